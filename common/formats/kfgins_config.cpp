@@ -1,0 +1,178 @@
+#include "common/formats/kfgins_config.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <vector>
+
+#include "common/io/input_error.hpp"
+
+namespace ldv {
+namespace {
+namespace fs = std::filesystem;
+
+struct Reader {
+  const std::string& file;
+  const YAML::Node& root;
+
+  [[noreturn]] void fail(const std::string& key, const YAML::Node& n, const std::string& expected) const {
+    const long line = n.IsDefined() ? n.Mark().line + 1 : 0;
+    throw InputError(file, line, "key '" + key + "': expected " + expected);
+  }
+  YAML::Node at(const std::string& key) const {
+    // Supports "section.key".
+    const auto dot = key.find('.');
+    if (dot == std::string::npos) return root[key];
+    return root[key.substr(0, dot)][key.substr(dot + 1)];
+  }
+  bool has(const std::string& key) const {
+    const YAML::Node n = at(key);
+    return n.IsDefined() && !n.IsNull();
+  }
+  double number(const std::string& key) const {
+    const YAML::Node n = at(key);
+    if (!n.IsDefined()) fail(key, n, "a number (key is missing)");
+    try {
+      return n.as<double>();
+    } catch (const YAML::Exception&) {
+      fail(key, n, "a number");
+    }
+  }
+  std::string text(const std::string& key) const {
+    const YAML::Node n = at(key);
+    if (!n.IsDefined() || !n.IsScalar()) fail(key, n, "a path string" + std::string(n.IsDefined() ? "" : " (key is missing)"));
+    return n.as<std::string>();
+  }
+  Vec3 vec3(const std::string& key) const {
+    const YAML::Node n = at(key);
+    if (!n.IsDefined()) fail(key, n, "a list of 3 numbers (key is missing)");
+    if (!n.IsSequence() || n.size() != 3) fail(key, n, "a list of 3 numbers");
+    Vec3 v;
+    for (int i = 0; i < 3; ++i) {
+      try {
+        v[i] = n[i].as<double>();
+      } catch (const YAML::Exception&) {
+        fail(key, n, "a list of 3 numbers (element " + std::to_string(i + 1) + " is not a number)");
+      }
+    }
+    return v;
+  }
+  std::optional<Vec3> optional_vec3(const std::string& key) const {
+    if (!has(key)) return std::nullopt;
+    return vec3(key);
+  }
+};
+
+std::string resolve_data_path(const std::string& p, const std::string& config_path) {
+  if (p.empty() || fs::path(p).is_absolute() || fs::exists(p)) return p;
+  const fs::path beside = fs::path(config_path).parent_path() / p;
+  if (fs::exists(beside)) return beside.lexically_normal().string();
+  return p;
+}
+}  // namespace
+
+KfGinsConfig load_kfgins_config(const std::string& path) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::BadFile&) {
+    throw InputError(path, 0, "cannot open configuration file");
+  } catch (const YAML::ParserException& e) {
+    throw InputError(path, e.mark.line + 1, "YAML syntax error: " + e.msg);
+  }
+  if (!root.IsMap()) throw InputError(path, 0, "expected a YAML mapping of KF-GINS keys");
+  const Reader r{path, root};
+  KfGinsConfig c;
+  c.config_path = path;
+  c.imu_path = resolve_data_path(r.text("imupath"), path);
+  c.gnss_path = resolve_data_path(r.text("gnsspath"), path);
+  c.output_path = r.has("outputpath") ? resolve_data_path(r.text("outputpath"), path) : ".";
+  if (r.has("imudatalen")) c.imu_data_columns = static_cast<int>(r.number("imudatalen"));
+  if (r.has("imudatarate")) c.imu_rate_hz = r.number("imudatarate");
+  if (c.imu_rate_hz <= 0) r.fail("imudatarate", r.at("imudatarate"), "a positive rate [Hz]");
+  if (r.has("starttime")) c.start_time_s = r.number("starttime");
+  if (r.has("endtime")) c.end_time_s = r.number("endtime");
+
+  if (auto p = r.optional_vec3("initpos")) c.init_pos = Geodetic{(*p)[0] * kDegToRad, (*p)[1] * kDegToRad, (*p)[2]};
+  c.init_vel_n_mps = r.optional_vec3("initvel");
+  if (auto a = r.optional_vec3("initatt")) c.init_rpy_rad = Vec3((*a)[0], (*a)[1], wrap_pi((*a)[2] * kDegToRad) * kRadToDeg) * kDegToRad;
+
+  const double deg_per_h = kDegToRad / 3600.0, mgal = 1e-5, ppm = 1e-6;
+  if (auto v = r.optional_vec3("initgyrbias")) c.init_gyro_bias_rad_s = *v * deg_per_h;
+  if (auto v = r.optional_vec3("initaccbias")) c.init_accel_bias_mps2 = *v * mgal;
+  if (auto v = r.optional_vec3("initgyrscale")) c.init_gyro_scale = *v * ppm;
+  if (auto v = r.optional_vec3("initaccscale")) c.init_accel_scale = *v * ppm;
+  if (auto v = r.optional_vec3("initposstd")) c.init_pos_std_ned_m = *v;
+  if (auto v = r.optional_vec3("initvelstd")) c.init_vel_std_n_mps = *v;
+  if (auto v = r.optional_vec3("initattstd")) c.init_att_std_rad = *v * kDegToRad;
+  if (auto v = r.optional_vec3("initbgstd")) c.init_gyro_bias_std_rad_s = *v * deg_per_h;
+  if (auto v = r.optional_vec3("initbastd")) c.init_accel_bias_std_mps2 = *v * mgal;
+  if (auto v = r.optional_vec3("initsgstd")) c.init_gyro_scale_std = *v * ppm;
+  if (auto v = r.optional_vec3("initsastd")) c.init_accel_scale_std = *v * ppm;
+
+  if (!r.has("imunoise")) throw InputError(path, 0, "key 'imunoise': expected a section with arw, vrw, gbstd, abstd, gsstd, asstd, corrtime");
+  auto& n = c.imu_noise;
+  n.arw_rad_per_sqrt_s = r.vec3("imunoise.arw") * (kDegToRad / 60.0);
+  n.vrw_mps_per_sqrt_s = r.vec3("imunoise.vrw") / 60.0;
+  n.gyro_bias_std_rad_s = r.vec3("imunoise.gbstd") * deg_per_h;
+  n.accel_bias_std_mps2 = r.vec3("imunoise.abstd") * mgal;
+  n.gyro_scale_std = r.has("imunoise.gsstd") ? Vec3(r.vec3("imunoise.gsstd") * ppm) : Vec3(Vec3::Zero());
+  n.accel_scale_std = r.has("imunoise.asstd") ? Vec3(r.vec3("imunoise.asstd") * ppm) : Vec3(Vec3::Zero());
+  n.corr_time_s = r.number("imunoise.corrtime") * 3600.0;
+  if (n.corr_time_s <= 0) r.fail("imunoise.corrtime", r.at("imunoise.corrtime"), "a positive correlation time [h]");
+  c.antenna_lever_b_m = r.has("antlever") ? r.vec3("antlever") : Vec3::Zero();
+  if (root["ldv"]) c.ldv = root["ldv"];
+  return c;
+}
+
+void save_kfgins_config(const KfGinsConfig& c, const std::string& path) {
+  YAML::Emitter e;
+  auto seq = [&](const char* key, const Vec3& v, const char* comment) {
+    e << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq << v[0] << v[1] << v[2] << YAML::EndSeq
+      << YAML::Comment(comment);
+  };
+  e.SetDoublePrecision(12);
+  e << YAML::BeginMap;
+  e << YAML::Key << "imupath" << YAML::Value << c.imu_path;
+  e << YAML::Key << "gnsspath" << YAML::Value << c.gnss_path;
+  e << YAML::Key << "outputpath" << YAML::Value << c.output_path;
+  e << YAML::Key << "imudatalen" << YAML::Value << c.imu_data_columns;
+  e << YAML::Key << "imudatarate" << YAML::Value << c.imu_rate_hz << YAML::Comment("[Hz]");
+  e << YAML::Key << "starttime" << YAML::Value << c.start_time_s << YAML::Comment("[s of GPS week]");
+  e << YAML::Key << "endtime" << YAML::Value << c.end_time_s << YAML::Comment("-1: to the end");
+  if (c.init_pos)
+    seq("initpos", Vec3(c.init_pos->lat_rad * kRadToDeg, c.init_pos->lon_rad * kRadToDeg, c.init_pos->h_m),
+        "lat lon [deg], h [m]");
+  if (c.init_vel_n_mps) seq("initvel", *c.init_vel_n_mps, "N E D [m/s]");
+  if (c.init_rpy_rad) seq("initatt", *c.init_rpy_rad * kRadToDeg, "roll pitch yaw [deg]");
+  const double deg_per_h = kDegToRad / 3600.0;
+  seq("initgyrbias", c.init_gyro_bias_rad_s / deg_per_h, "[deg/h]");
+  seq("initaccbias", c.init_accel_bias_mps2 / 1e-5, "[mGal]");
+  seq("initgyrscale", c.init_gyro_scale / 1e-6, "[ppm]");
+  seq("initaccscale", c.init_accel_scale / 1e-6, "[ppm]");
+  seq("initposstd", c.init_pos_std_ned_m, "N E D [m]");
+  seq("initvelstd", c.init_vel_std_n_mps, "N E D [m/s]");
+  seq("initattstd", c.init_att_std_rad * kRadToDeg, "roll pitch yaw [deg]");
+  if (c.init_gyro_bias_std_rad_s) seq("initbgstd", *c.init_gyro_bias_std_rad_s / deg_per_h, "[deg/h]");
+  if (c.init_accel_bias_std_mps2) seq("initbastd", *c.init_accel_bias_std_mps2 / 1e-5, "[mGal]");
+  if (c.init_gyro_scale_std) seq("initsgstd", *c.init_gyro_scale_std / 1e-6, "[ppm]");
+  if (c.init_accel_scale_std) seq("initsastd", *c.init_accel_scale_std / 1e-6, "[ppm]");
+  e << YAML::Key << "imunoise" << YAML::Value << YAML::BeginMap;
+  const auto& n = c.imu_noise;
+  seq("arw", n.arw_rad_per_sqrt_s / (kDegToRad / 60.0), "[deg/sqrt(h)]");
+  seq("vrw", n.vrw_mps_per_sqrt_s * 60.0, "[m/s/sqrt(h)]");
+  seq("gbstd", n.gyro_bias_std_rad_s / deg_per_h, "[deg/h]");
+  seq("abstd", n.accel_bias_std_mps2 / 1e-5, "[mGal]");
+  seq("gsstd", n.gyro_scale_std / 1e-6, "[ppm]");
+  seq("asstd", n.accel_scale_std / 1e-6, "[ppm]");
+  e << YAML::Key << "corrtime" << YAML::Value << n.corr_time_s / 3600.0 << YAML::Comment("[h]");
+  e << YAML::EndMap;
+  seq("antlever", c.antenna_lever_b_m, "front right down [m]");
+  if (c.ldv.IsDefined() && !c.ldv.IsNull()) e << YAML::Key << "ldv" << YAML::Value << c.ldv;
+  e << YAML::EndMap;
+  std::ofstream out(path);
+  if (!out) throw InputError(path, 0, "cannot open file for writing");
+  out << "# KF-GINS configuration (written by ldvnav; readable by KF-GINS and `ldv nav --kfgins-config`)\n"
+      << e.c_str() << "\n";
+}
+
+}  // namespace ldv

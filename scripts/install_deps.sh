@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages ldvnav needs to build, test and run (idempotent, non-interactive).
+set -euo pipefail
+PACKAGES=(
+  build-essential cmake pkg-config git
+  liblcm-dev liblcm-bin libglib2.0-dev
+  libeigen3-dev libgeographiclib-dev libspdlog-dev libyaml-cpp-dev libcli11-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libsystemd-dev
+  gnuplot-nox rtklib iproute2 pps-tools systemd
+)
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "installing: ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
