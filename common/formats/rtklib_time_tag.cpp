@@ -1,0 +1,50 @@
+#include "common/formats/rtklib_time_tag.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+#include "common/io/input_error.hpp"
+
+namespace ldv {
+
+RtklibTimeTag read_rtklib_time_tag(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, 0, "cannot open RTKLIB time-tag file");
+  const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  constexpr size_t kHeader = 60, kFixed = kHeader + 4 + 4 + 8;
+  if (bytes.size() < kFixed || std::strncmp(bytes.data(), "TIMETAG RTKLIB", 14) != 0)
+    throw InputError(path, 0, "not an RTKLIB time-tag file (expected the 'TIMETAG RTKLIB' header and 76 bytes)");
+  if ((bytes.size() - kFixed) % 8 != 0)
+    throw InputError(path, 0, "truncated RTKLIB time-tag file: " + std::to_string((bytes.size() - kFixed) % 8) +
+                                  " trailing bytes after the last (tick, position) pair");
+  uint32_t tick_f = 0, time_s = 0;
+  double fraction = 0.0;
+  std::memcpy(&tick_f, bytes.data() + kHeader, 4);
+  std::memcpy(&time_s, bytes.data() + kHeader + 4, 4);
+  std::memcpy(&fraction, bytes.data() + kHeader + 8, 8);
+  RtklibTimeTag tag;
+  tag.start_gps_s = static_cast<double>(time_s) - kGpsEpochInUnixSeconds + fraction;
+  for (size_t off = kFixed; off + 8 <= bytes.size(); off += 8) {
+    RtklibTimeTag::Entry e{};
+    std::memcpy(&e.tick_ms, bytes.data() + off, 4);
+    std::memcpy(&e.file_pos, bytes.data() + off + 4, 4);
+    if (!tag.entries.empty() && (e.file_pos < tag.entries.back().file_pos || e.tick_ms < tag.entries.back().tick_ms))
+      throw InputError(path, 0, "time-tag entry " + std::to_string(tag.entries.size() + 1) +
+                                    " goes backwards in tick or file position");
+    tag.entries.push_back(e);
+  }
+  if (tag.entries.empty()) throw InputError(path, 0, "time-tag file has no (tick, position) entries");
+  return tag;
+}
+
+double RtklibTimeTag::reception_gps_s(uint64_t file_pos) const {
+  // The last entry whose chunk starts at or before file_pos received that byte.
+  auto it = std::upper_bound(entries.begin(), entries.end(), file_pos,
+                             [](uint64_t pos, const Entry& e) { return pos < e.file_pos; });
+  const Entry& e = it == entries.begin() ? entries.front() : *std::prev(it);
+  return start_gps_s + e.tick_ms * 1e-3;
+}
+
+}  // namespace ldv

@@ -1,0 +1,35 @@
+#pragma once
+// IMU logs recorded as CSV text with an RTKLIB time-tag file beside them (the layout of
+// ../shared/data/drives/walk_0827: `ax,ay,az,gx,gy,gz,t_counter_ms`). Each sample carries the
+// device's own millisecond counter; the tag file gives the host reception time of every byte.
+// GPS time of a sample = offset + rate * counter, fitted to the lower envelope of the reception
+// times (a sample can arrive late, never early), so host jitter does not enter the time stamps.
+// Rates are turned into increments over (t_prev, t] with the trapezoidal rule.
+#include <string>
+#include <vector>
+
+#include "common/formats/nav_types.hpp"
+
+namespace ldv {
+
+struct TaggedImuCsvOptions {
+  double accel_to_mps2 = 9.80665;  // the walk log is in g (standard gravity, as the device datasheets use)
+  double gyro_to_rad_s = kDegToRad;
+  double counter_to_s = 1e-3;      // the device counter ticks in ms
+};
+
+struct TaggedImuCsvReport {
+  long samples = 0;
+  long skipped_lines = 0;       // partial or malformed lines (first/last lines of a log are often cut)
+  long skipped_counter = 0;     // repeated or backward counter values
+  double counter_rate_error_ppm = 0.0;  // device clock rate relative to the host tick
+  double min_latency_s = 0.0;   // by construction 0: the fit's lower envelope
+  double median_latency_s = 0.0;
+  double p99_latency_s = 0.0;
+};
+
+std::vector<ImuIncrement> read_tagged_imu_csv(const std::string& csv_path, const std::string& tag_path,
+                                              const TaggedImuCsvOptions& options = {},
+                                              TaggedImuCsvReport* report = nullptr);
+
+}  // namespace ldv
