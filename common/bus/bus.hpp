@@ -1,0 +1,95 @@
+#pragma once
+// The one wrapper around LCM (DESIGN.md section 1): nothing else in ldvnav includes lcm headers.
+// - subscribe<Msg>(channel, handler): typed callbacks; a message that fails to decode (wrong
+//   fingerprint, truncated) is counted in malformed() and never reaches the handler or throws.
+// - every subscription gets an explicit queue capacity (LCM's default of 30 silently drops).
+// - SequenceTracker counts gaps in the per-publisher sequence numbers every message carries.
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <lcm/lcm-cpp.hpp>
+
+namespace ldv {
+
+class Bus {
+ public:
+  // url: an LCM provider URL ("udpm://239.255.76.67:7667?ttl=0", "memq://", "file://log?mode=r").
+  // Empty: LCM's default (LCM_DEFAULT_URL or udpm). Throws std::runtime_error if LCM cannot start.
+  explicit Bus(const std::string& url = "");
+  ~Bus();
+  Bus(const Bus&) = delete;
+  Bus& operator=(const Bus&) = delete;
+
+  template <class Msg>
+  bool publish(const std::string& channel, const Msg& msg) {
+    return lcm_->publish(channel, &msg) == 0;
+  }
+
+  template <class Msg>
+  void subscribe(const std::string& channel, std::function<void(const Msg&, const std::string& channel)> handler,
+                 int queue_capacity = 1000) {
+    auto sub = std::make_unique<TypedSubscription<Msg>>(std::move(handler), &malformed_);
+    lcm::Subscription* s = lcm_->subscribe(channel, &TypedSubscription<Msg>::on_raw, sub.get());
+    s->setQueueCapacity(queue_capacity);
+    subscriptions_.push_back(std::move(sub));
+  }
+
+  // Dispatches pending messages, waiting at most timeout_ms. Returns >0 if something was handled,
+  // 0 on timeout, <0 on an LCM error.
+  int handle(int timeout_ms);
+  int fd() const { return lcm_->getFileno(); }
+  int64_t malformed() const { return malformed_; }
+
+ private:
+  struct SubscriptionBase {
+    virtual ~SubscriptionBase() = default;
+  };
+  template <class Msg>
+  struct TypedSubscription : SubscriptionBase {
+    TypedSubscription(std::function<void(const Msg&, const std::string&)> h, int64_t* malformed)
+        : handler(std::move(h)), malformed_count(malformed) {}
+    void on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
+      Msg msg;
+      if (msg.decode(rbuf->data, 0, rbuf->data_size) < 0) {
+        ++*malformed_count;
+        return;
+      }
+      handler(msg, channel);
+    }
+    std::function<void(const Msg&, const std::string&)> handler;
+    int64_t* malformed_count;
+  };
+
+  std::unique_ptr<lcm::LCM> lcm_;
+  std::vector<std::unique_ptr<SubscriptionBase>> subscriptions_;
+  int64_t malformed_ = 0;
+};
+
+// Counts lost messages from the sequence numbers of one publisher (a restart of the publisher,
+// seq going back to 0, is a reset, not a loss).
+class SequenceTracker {
+ public:
+  // Returns the number of messages missing before this one.
+  int64_t observe(int64_t seq) {
+    int64_t missing = 0;
+    if (has_last_ && seq > last_ + 1) missing = seq - last_ - 1;
+    if (has_last_ && seq <= last_) ++resets_;
+    last_ = seq;
+    has_last_ = true;
+    ++received_;
+    lost_ += missing;
+    return missing;
+  }
+  int64_t received() const { return received_; }
+  int64_t lost() const { return lost_; }
+  int64_t resets() const { return resets_; }
+
+ private:
+  bool has_last_ = false;
+  int64_t last_ = 0, received_ = 0, lost_ = 0, resets_ = 0;
+};
+
+}  // namespace ldv
