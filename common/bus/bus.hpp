@@ -37,6 +37,10 @@ class Bus {
     subscriptions_.push_back(std::move(sub));
   }
 
+  // Every message on channels matching the regex, undecoded (for `ldv spy` and loggers).
+  using RawHandler = std::function<void(const std::string& channel, const uint8_t* data, int size)>;
+  void subscribe_raw(const std::string& channel_regex, RawHandler handler, int queue_capacity = 10000);
+
   // Dispatches pending messages, waiting at most timeout_ms. Returns >0 if something was handled,
   // 0 on timeout, <0 on an LCM error.
   int handle(int timeout_ms);
@@ -61,6 +65,14 @@ class Bus {
     }
     std::function<void(const Msg&, const std::string&)> handler;
     int64_t* malformed_count;
+  };
+
+  struct RawSubscription : SubscriptionBase {
+    explicit RawSubscription(RawHandler h) : handler(std::move(h)) {}
+    void on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
+      handler(channel, static_cast<const uint8_t*>(rbuf->data), static_cast<int>(rbuf->data_size));
+    }
+    RawHandler handler;
   };
 
   std::unique_ptr<lcm::LCM> lcm_;

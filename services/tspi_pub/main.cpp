@@ -1,0 +1,92 @@
+// tspi_pub: the remote-facing product. Subscribes NAV on the vehicle bus and publishes TSPI
+// (tspi_v1_t) at a configured rate on a configured multicast group with a TTL for the vehicle network.
+#include <CLI/CLI.hpp>
+#include <yaml-cpp/yaml.h>
+
+#include "common/logging.hpp"
+#include "services/runtime/service_runtime.hpp"
+#include "services/tspi_pub/tspi_from_nav.hpp"
+
+namespace {
+struct TspiOptions {
+  std::string bus_url;             // the vehicle bus (NAV comes from here)
+  double rate_hz = 50.0;           // TSPI rate
+  std::string group = "239.255.77.1";
+  int port = 7668;
+  int ttl = 1;                     // >= 1 to leave the host onto the vehicle network
+  std::string channel = "TSPI";
+  bool print = false;              // also print TSPI lines to stdout (1 Hz)
+};
+
+TspiOptions load_options(const std::string& path) {
+  TspiOptions o;
+  if (path.empty()) return o;
+  const YAML::Node y = YAML::LoadFile(path);
+  if (y["bus_url"]) o.bus_url = y["bus_url"].as<std::string>();
+  if (const auto t = y["tspi"]) {
+    if (t["rate_hz"]) o.rate_hz = t["rate_hz"].as<double>();
+    if (t["group"]) o.group = t["group"].as<std::string>();
+    if (t["port"]) o.port = t["port"].as<int>();
+    if (t["ttl"]) o.ttl = t["ttl"].as<int>();
+    if (t["channel"]) o.channel = t["channel"].as<std::string>();
+    if (t["print"]) o.print = t["print"].as<bool>();
+  }
+  if (o.rate_hz <= 0 || o.rate_hz > 1000) throw std::runtime_error(path + ": tspi.rate_hz must be in (0, 1000] Hz");
+  if (o.ttl < 0 || o.ttl > 255) throw std::runtime_error(path + ": tspi.ttl must be in [0, 255]");
+  return o;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"tspi_pub: publishes TSPI (tspi_v1_t) from NAV at a configured rate, multicast group and TTL"};
+  std::string config_path, bus_url_override;
+  bool print = false;
+  app.add_option("-c,--config", config_path, "YAML configuration (deploy/config/tspi_pub.yaml)");
+  app.add_option("--bus-url", bus_url_override, "vehicle bus LCM URL (overrides the config)");
+  app.add_flag("--print", print, "print one TSPI line per second to stdout");
+  CLI11_PARSE(app, argc, argv);
+  ldv::init_logging();
+  try {
+    TspiOptions o = load_options(config_path);
+    if (!bus_url_override.empty()) o.bus_url = bus_url_override;
+    o.print = o.print || print;
+    ldv::ServiceRuntime rt("tspi_pub", o.bus_url);
+    const std::string tspi_url = "udpm://" + o.group + ":" + std::to_string(o.port) + "?ttl=" + std::to_string(o.ttl);
+    ldv::Bus tspi_bus(tspi_url);
+    ldv::TspiDecimator decimator(o.rate_hz);
+    ldv::SequenceTracker nav_seq;
+    double next_print_s = 0;
+    rt.bus().subscribe<ldv_lcm::nav_state_t>("NAV", [&](const ldv_lcm::nav_state_t& nav, const std::string&) {
+      ++rt.counters().received;
+      rt.counters().dropped += nav_seq.observe(nav.seq);
+      if (!std::isfinite(nav.lat_deg) || !std::isfinite(nav.lon_deg) || !std::isfinite(nav.height_m)) {
+        ++rt.counters().malformed;
+        return;
+      }
+      if (auto t = decimator.on_nav(nav)) {
+        tspi_bus.publish(o.channel, *t);
+        if (o.print && nav.gps_sow_s >= next_print_s) {
+          std::printf("TSPI week %d sow %.3f lat %.9f lon %.9f h %.3f vN %.3f vE %.3f vD %.3f rpy %.3f %.3f %.3f "
+                      "std_h %.3f m q %d\n",
+                      t->gps_week, t->gps_sow_s, t->lat_deg, t->lon_deg, t->height_m, t->vel_ned_mps[0],
+                      t->vel_ned_mps[1], t->vel_ned_mps[2], t->rpy_deg[0], t->rpy_deg[1], t->rpy_deg[2],
+                      std::hypot(t->pos_std_ned_m[0], t->pos_std_ned_m[1]), t->quality);
+          std::fflush(stdout);
+          next_print_s = std::floor(nav.gps_sow_s) + 1.0;
+        }
+      }
+    }, 5000);
+    spdlog::info("tspi_pub: NAV from '{}', TSPI on {} channel {} at {} Hz", o.bus_url, tspi_url, o.channel, o.rate_hz);
+    rt.ready();
+    while (rt.running()) {
+      rt.bus().handle(50);
+      rt.tick();
+    }
+    spdlog::info("tspi_pub: stopping (received {}, dropped {}, malformed {})", rt.counters().received,
+                 rt.counters().dropped, rt.counters().malformed);
+  } catch (const std::exception& e) {
+    spdlog::error("tspi_pub: {}", e.what());
+    return 1;
+  }
+  return 0;
+}
