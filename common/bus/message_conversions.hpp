@@ -1,0 +1,22 @@
+#pragma once
+// Bus messages <-> the plain records of common/formats/nav_types.hpp, in one place so the live
+// services and the offline log readers convert identically (the same data gives the same result).
+#include <ldv_lcm/gnss_solution_t.hpp>
+#include <ldv_lcm/imu_sample_t.hpp>
+
+#include "common/formats/nav_types.hpp"
+
+namespace ldv {
+
+ImuIncrement imu_from_message(const ldv_lcm::imu_sample_t& m);
+ldv_lcm::imu_sample_t message_from_imu(const ImuIncrement& s, int gps_week, int64_t seq);
+
+// Position std is the square root of the covariance diagonal (NED).
+GnssFix gnss_from_message(const ldv_lcm::gnss_solution_t& m);
+ldv_lcm::gnss_solution_t message_from_gnss(const GnssFix& g, int gps_week, int64_t seq);
+
+// True when every number in the message is finite and the std/quality fields are plausible.
+bool is_valid(const ldv_lcm::imu_sample_t& m);
+bool is_valid(const ldv_lcm::gnss_solution_t& m);
+
+}  // namespace ldv

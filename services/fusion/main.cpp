@@ -1,0 +1,133 @@
+// fusion: the estimator as a service. Subscribes IMU and GNSS_SOLUTION, runs FusionEngine (the
+// estimator library `ldv nav` uses), publishes NAV at the IMU rate, NAV_INNOVATION at the GNSS rate
+// and its heartbeat; saves a warm-start state once a second.
+#include <CLI/CLI.hpp>
+#include <yaml-cpp/yaml.h>
+
+#include <ldv_lcm/nav_innovation_t.hpp>
+#include <ldv_lcm/nav_state_t.hpp>
+
+#include "common/bus/message_conversions.hpp"
+#include "common/formats/kfgins_config.hpp"
+#include "common/logging.hpp"
+#include "estimator/run/alignment_options_from.hpp"
+#include "estimator/run/run_navigation.hpp"
+#include "services/fusion/fusion_engine.hpp"
+#include "services/fusion/nav_message.hpp"
+#include "services/runtime/service_runtime.hpp"
+
+namespace {
+struct FusionConfig {
+  std::string bus_url;
+  std::string kfgins_config;  // KF-GINS YAML: imunoise, antlever, ldv: model/add/drop (paths unused)
+  double align_wait_s = 1.0;
+  double history_s = 3.0;     // how late a GNSS solution may arrive and still be applied at its epoch
+  std::string state_file;     // warm-start state ("" = none)
+  double warm_start_max_age_s = 30.0;
+};
+
+FusionConfig load_config(const std::string& path) {
+  FusionConfig c;
+  if (path.empty()) return c;
+  const YAML::Node y = YAML::LoadFile(path);
+  if (y["bus_url"]) c.bus_url = y["bus_url"].as<std::string>();
+  if (y["kfgins_config"]) c.kfgins_config = y["kfgins_config"].as<std::string>();
+  if (y["align_wait_s"]) c.align_wait_s = y["align_wait_s"].as<double>();
+  if (y["history_s"]) c.history_s = y["history_s"].as<double>();
+  if (y["state_file"]) c.state_file = y["state_file"].as<std::string>();
+  if (y["warm_start_max_age_s"]) c.warm_start_max_age_s = y["warm_start_max_age_s"].as<double>();
+  return c;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"fusion: GPS/INS error-state EKF service (IMU + GNSS_SOLUTION -> NAV, NAV_INNOVATION)"};
+  std::string config_path, bus_url_override, kfgins_override;
+  app.add_option("-c,--config", config_path, "YAML configuration (deploy/config/fusion.yaml)");
+  app.add_option("--bus-url", bus_url_override, "LCM URL (overrides the config)");
+  app.add_option("--kfgins-config", kfgins_override, "KF-GINS configuration with the IMU noise model (overrides the config)");
+  CLI11_PARSE(app, argc, argv);
+  ldv::init_logging();
+  try {
+    FusionConfig cfg = load_config(config_path);
+    if (!bus_url_override.empty()) cfg.bus_url = bus_url_override;
+    if (!kfgins_override.empty()) cfg.kfgins_config = kfgins_override;
+    if (cfg.kfgins_config.empty()) throw std::runtime_error("no kfgins_config given (the IMU noise model)");
+    const ldv::KfGinsConfig kcfg = ldv::load_kfgins_config(cfg.kfgins_config);
+    ldv::est::FilterOptions fo = ldv::est::options_from_kfgins(kcfg);
+    fo.history_s = cfg.history_s;
+    const ldv::est::AlignmentOptions ao = ldv::est::alignment_options_from(fo);
+    ldv::FusionEngine engine(fo, ao, cfg.align_wait_s);
+    if (!cfg.state_file.empty()) {
+      if (auto w = ldv::load_warm_state(cfg.state_file, ldv::host_time_s(), cfg.warm_start_max_age_s)) {
+        engine.set_warm_start(*w);
+        spdlog::info("fusion: warm start available from {} (saved {:.1f} s ago)", cfg.state_file,
+                     ldv::host_time_s() - w->saved_host_time_s);
+      }
+    }
+
+    ldv::ServiceRuntime rt("fusion", cfg.bus_url);
+    ldv::SequenceTracker imu_seq, gnss_seq;
+    int64_t nav_seq = 0, innovation_seq = 0;
+    double last_innovation_t = -1e300, next_save_s = 0;
+    int last_week = 0;
+    std::vector<ldv::FusionOutput> outputs;
+    bool announced = false;
+
+    auto publish = [&](std::vector<ldv::FusionOutput>& outs) {
+      for (const auto& o : outs) rt.bus().publish("NAV", ldv::nav_message(o, nav_seq++));
+      outs.clear();
+      for (const auto& r : engine.filter().take_innovations()) {
+        if (r.t_s <= last_innovation_t && r.kind == ldv::est::MeasurementKind::kGnssPosition) continue;
+        if (r.replayed && r.t_s <= last_innovation_t) continue;  // already published before a rewind
+        rt.bus().publish("NAV_INNOVATION", ldv::innovation_message(r, last_week, innovation_seq++));
+        last_innovation_t = std::max(last_innovation_t, r.t_s);
+      }
+      if (engine.navigating() && !announced) {
+        spdlog::info("fusion: navigating ({})", engine.initialisation());
+        announced = true;
+      }
+    };
+
+    rt.bus().subscribe<ldv_lcm::imu_sample_t>("IMU", [&](const ldv_lcm::imu_sample_t& m, const std::string&) {
+      ++rt.counters().received;
+      rt.counters().dropped += imu_seq.observe(m.seq);
+      if (!ldv::is_valid(m)) {
+        ++rt.counters().malformed;
+        return;
+      }
+      last_week = m.gps_week;
+      engine.on_imu(ldv::imu_from_message(m), m.gps_week, ldv::host_time_s(), outputs);
+      publish(outputs);
+    }, 20000);
+    rt.bus().subscribe<ldv_lcm::gnss_solution_t>("GNSS_SOLUTION", [&](const ldv_lcm::gnss_solution_t& m, const std::string&) {
+      ++rt.counters().received;
+      rt.counters().dropped += gnss_seq.observe(m.seq);
+      if (!ldv::is_valid(m)) {
+        ++rt.counters().malformed;
+        return;
+      }
+      engine.on_gnss(ldv::gnss_from_message(m), ldv::host_time_s());
+    }, 1000);
+
+    rt.ready();
+    while (rt.running()) {
+      rt.bus().handle(20);
+      engine.on_idle(ldv::host_time_s(), outputs);
+      publish(outputs);
+      rt.counters().fault_bits = static_cast<int32_t>(engine.filter().status());
+      rt.set_state(engine.navigating() ? 1 : 0);
+      rt.tick();
+      if (!cfg.state_file.empty() && engine.navigating() && ldv::host_time_s() >= next_save_s) {
+        ldv::save_warm_state(cfg.state_file, {ldv::host_time_s(), engine.filter().state(), engine.filter().nav_std()});
+        next_save_s = ldv::host_time_s() + 1.0;
+      }
+    }
+    spdlog::info("fusion: stopping (received {}, dropped {}, malformed {}, status {})", rt.counters().received,
+                 rt.counters().dropped, rt.counters().malformed, ldv::est::describe_status(engine.filter().status()));
+  } catch (const std::exception& e) {
+    spdlog::error("fusion: {}", e.what());
+    return 1;
+  }
+  return 0;
+}
