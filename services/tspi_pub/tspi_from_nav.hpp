@@ -16,7 +16,8 @@ class TspiDecimator {
   // Returns a TSPI message when this NAV sample is the first at or after the next grid epoch
   // k / rate_hz (GPS seconds of week); otherwise nothing.
   std::optional<ldv_lcm::tspi_v1_t> on_nav(const ldv_lcm::nav_state_t& nav) {
-    const long slot = static_cast<long>(std::floor(nav.gps_sow_s * rate_hz_ + 1e-6));
+    // 0.1 ms tolerance: NAV epochs carry the IMU stamps, whose last digits jitter (far below an IMU interval).
+    const long slot = static_cast<long>(std::floor((nav.gps_sow_s + 1e-4) * rate_hz_));
     if (has_last_slot_ && slot == last_slot_ && nav.gps_week == last_week_) return std::nullopt;
     has_last_slot_ = true;
     last_slot_ = slot;

@@ -1,0 +1,50 @@
+#include "services/fusion/log_replay.hpp"
+
+#include <lcm/lcm-cpp.hpp>
+
+#include "common/bus/message_conversions.hpp"
+#include "common/io/input_error.hpp"
+
+namespace ldv {
+
+LogReplaySummary replay_fusion_log(const std::string& log_path, FusionEngine& engine,
+                                   const std::function<void(const FusionOutput&)>& on_output,
+                                   const std::string& imu_channel, const std::string& gnss_channel) {
+  lcm::LogFile log(log_path, "r");
+  if (!log.good()) throw InputError(log_path, 0, "cannot open LCM log file");
+  LogReplaySummary sum;
+  std::vector<FusionOutput> outs;
+  double last_arrival_s = 0;
+  while (const lcm::LogEvent* ev = log.readNextEvent()) {
+    const double arrival_s = ev->timestamp * 1e-6;  // logger receive time [us] -> s
+    last_arrival_s = arrival_s;
+    if (ev->channel == imu_channel) {
+      ldv_lcm::imu_sample_t m;
+      if (m.decode(ev->data, 0, ev->datalen) < 0 || !is_valid(m)) {
+        ++sum.malformed;
+        continue;
+      }
+      ++sum.imu_messages;
+      engine.on_imu(imu_from_message(m), m.gps_week, arrival_s, outs);
+    } else if (ev->channel == gnss_channel) {
+      ldv_lcm::gnss_solution_t m;
+      if (m.decode(ev->data, 0, ev->datalen) < 0 || !is_valid(m)) {
+        ++sum.malformed;
+        continue;
+      }
+      ++sum.gnss_messages;
+      engine.on_gnss(gnss_from_message(m), arrival_s);
+    } else {
+      ++sum.other_messages;
+      engine.on_idle(arrival_s, outs);
+    }
+    for (const auto& o : outs) on_output(o);
+    outs.clear();
+  }
+  engine.on_idle(last_arrival_s + 1e6, outs);
+  for (const auto& o : outs) on_output(o);
+  sum.initialisation = engine.initialisation();
+  return sum;
+}
+
+}  // namespace ldv
