@@ -1,0 +1,40 @@
+#pragma once
+// imu_acq's configuration (deploy/config/imu_acq.yaml).
+#include <string>
+
+#include "services/gnss_link/input/byte_source_options.hpp"
+#include "services/imu_acq/imu_correction.hpp"
+#include "services/imu_acq/imu_time_stamper.hpp"
+
+namespace ldv::imu {
+
+enum class DeviceProtocol { kTsu, kGx2 };
+enum class PpsSource {
+  kDevice,  // PPS latch frames in the device stream (time-stamp unit)
+  kKernel,  // /dev/ppsN; samples are then stamped by their host arrival time (no device latch)
+  kNone,    // no PPS: every stamp is extrapolated and flagged
+};
+enum class LabelSide { kAuto, kLastPulse, kNextPulse };  // auto: from GNSS_PPS flags bit 3
+
+struct ImuAcqOptions {
+  std::string bus_url;
+  io::ByteSourceOptions input;
+  DeviceProtocol protocol = DeviceProtocol::kTsu;
+  double tsu_counter_hz = 10e6;
+  double gx2_timer_hz = 19660800.0;
+  int gx2_continuous_record = 0xC3;  // sent as "set continuous mode" on each open; 0: send nothing
+  double sample_rate_hz = 100.0;     // nominal, for the first interval and the histogram
+  PpsSource pps_source = PpsSource::kDevice;
+  std::string kernel_pps_device = "/dev/pps0";
+  LabelSide label_side = LabelSide::kAuto;
+  StamperOptions stamper;
+  double hist_bin_s = 2e-7;
+  ImuCorrection correction;
+  std::string calibration_file;  // reserved for `ldv calib` output (not applied yet)
+  std::string imu_channel = "IMU", pps_channel = "IMU_PPS", timing_channel = "IMU_TIMING",
+              label_channel = "GNSS_PPS";
+};
+
+ImuAcqOptions load_imu_acq_options(const std::string& path);
+
+}  // namespace ldv::imu
