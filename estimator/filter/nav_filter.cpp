@@ -1,0 +1,470 @@
+#include "estimator/filter/nav_filter.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Cholesky>
+
+#include "common/geo/earth_model.hpp"
+#include "estimator/filter/nav_error_dynamics.hpp"
+#include "estimator/update/chi_square.hpp"
+#include "estimator/update/gnss_position.hpp"
+#include "estimator/update/gnss_velocity.hpp"
+#include "estimator/update/kalman_update.hpp"
+
+namespace ldv::est {
+namespace {
+constexpr double kSnapshotPeriod_s = 0.2;
+constexpr double kHealthPeriod_s = 1.0;
+constexpr double kSplitTolerance_s = 1e-6;
+
+ImuIncrement scaled(const ImuIncrement& in, double fraction) {
+  ImuIncrement out = in;
+  out.dtheta_b_rad *= fraction;
+  out.dvel_b_mps *= fraction;
+  out.dt_s *= fraction;
+  return out;
+}
+
+bool finite(const NavState& s) {
+  return std::isfinite(s.pos.lat_rad) && std::isfinite(s.pos.lon_rad) && std::isfinite(s.pos.h_m) &&
+         s.v_n_mps.allFinite() && s.q_b_n.coeffs().allFinite();
+}
+}  // namespace
+
+NavFilter::NavFilter(FilterOptions options)
+    : opt_(std::move(options)), layout_(resolve_model(opt_.model, opt_.add, opt_.drop), opt_) {
+  m_ = layout_.effect_dim();
+  prior_std_ = Eigen::VectorXd::Zero(m_);
+  q_c_ = Eigen::VectorXd::Zero(m_);
+  for (const auto& b : layout_.blocks()) {
+    const int o = b.offset - kNavDim;
+    Eigen::VectorXd mean(b.dim), std(b.dim);
+    b.effect->prior(mean, std);
+    prior_std_.segment(o, b.dim) = std;
+    b.effect->process_noise(q_c_.segment(o, b.dim));
+    for (const Triplet& t : b.effect->dynamics()) F_ee_.push_back({o + t.row, o + t.col, t.value});
+    J_gyro_.push_back(Mat3X::Zero(3, b.dim));
+    J_accel_.push_back(Mat3X::Zero(3, b.dim));
+  }
+  gate_ = chi_square_quantile(opt_.gate_probability, 3);
+}
+
+void NavFilter::initialize(const NavState& s, const NavStd& std) {
+  c_ = Core{};
+  c_.nav = s;
+  c_.x_eff = Eigen::VectorXd::Zero(m_);
+  Eigen::VectorXd var(kNavDim + m_);
+  var << std.pos_ned_m.cwiseAbs2(), std.vel_n_mps.cwiseAbs2(), std.att_rad.cwiseAbs2(), prior_std_.cwiseAbs2();
+  for (const auto& b : layout_.blocks()) {
+    Eigen::VectorXd mean(b.dim), sd(b.dim);
+    b.effect->prior(mean, sd);
+    c_.x_eff.segment(b.offset - kNavDim, b.dim) = mean;
+  }
+  c_.P = var.asDiagonal();
+  c_.acc_B = Eigen::Matrix<double, 9, Eigen::Dynamic>::Zero(9, m_);
+  c_.detector = StaticDetector(opt_.zupt.window_s, opt_.zupt.f_std_mps2, opt_.zupt.omega_max_rad_s);
+  c_.mech.reset(s);
+  c_.initialized = true;
+  c_.status = kStatusInitialized;
+  c_.last_gnss_t_s = s.t_s;
+  rebuild_error_model();
+  last_good_ = c_;
+  pending_.clear();
+  snapshots_.clear();
+  imu_history_.clear();
+  if (opt_.history_s > 0.0) snapshots_.push_back(c_);  // a fix at the initial epoch may still arrive late
+}
+
+void NavFilter::rebuild_error_model() {
+  ImuErrorModel& m = c_.model;
+  m.clear_imu_terms();
+  m.gravity_anomaly_n_mps2.setZero();
+  m.lever_arm_b_m = opt_.lever_arm.init;  // used as given when lever_arm is not estimated
+  m.time_offset_s = opt_.time_offset_init_s;
+  for (const auto& b : layout_.blocks()) b.effect->apply(c_.x_eff.segment(b.offset - kNavDim, b.dim), m);
+  c_.mech.set_gravity_anomaly_n(m.gravity_anomaly_n_mps2);
+}
+
+void NavFilter::add_imu(const ImuIncrement& raw) {
+  if (!std::isfinite(raw.t_s) || !(raw.dt_s > 0.0) || !raw.dtheta_b_rad.allFinite() || !raw.dvel_b_mps.allFinite()) {
+    c_.status |= kStatusImuRejected;
+    ++faults_.imu_rejected;
+    return;
+  }
+  c_.status &= ~(kStatusImuRejected | kStatusImuGap | kStatusCovarianceReset | kStatusStateReset |
+                 kStatusLateDropped | kStatusMeasurementRejected);
+  if (!c_.initialized) return;
+  if (opt_.history_s > 0.0) {
+    imu_history_.push_back(raw);
+    while (!imu_history_.empty() && imu_history_.front().t_s < raw.t_s - opt_.history_s) imu_history_.pop_front();
+  }
+  process_imu(raw);
+  if (opt_.history_s > 0.0) take_snapshot();
+}
+
+void NavFilter::take_snapshot() {
+  if (snapshots_.empty() || c_.nav.t_s - snapshots_.back().nav.t_s >= kSnapshotPeriod_s) snapshots_.push_back(c_);
+  while (snapshots_.size() > 1 && snapshots_[1].nav.t_s < c_.nav.t_s - opt_.history_s) snapshots_.pop_front();
+}
+
+void NavFilter::process_imu(const ImuIncrement& raw) {
+  const double t_end = raw.t_s;
+  const double t0 = c_.nav.t_s;
+  if (t_end <= t0 + 1e-9) return;  // before the initial epoch
+  ImuIncrement rem = raw;
+  const double t_start = t_end - raw.dt_s;
+  if (t_start < t0 - 1e-9) rem = scaled(raw, (t_end - t0) / raw.dt_s);  // initialised inside this interval
+  if (t_start > t0 + 1e-9) {
+    // Missing samples: integrate the increment over the whole gap (its rate held).
+    if (t_end - t0 > 5.0 * raw.dt_s) {
+      c_.status |= kStatusImuGap;
+      ++faults_.imu_gaps;
+    }
+    rem = scaled(raw, (t_end - t0) / raw.dt_s);
+  }
+  rem.dt_s = t_end - t0;
+
+  while (!pending_.empty()) {
+    const double t_m = pending_.front().fix.t_s - c_.model.time_offset_s;
+    if (t_m > t_end + kSplitTolerance_s) break;
+    if (t_m > c_.nav.t_s + kSplitTolerance_s && t_m < t_end - kSplitTolerance_s) {
+      // Split the interval exactly at the measurement epoch (increments shared in proportion to time).
+      const double lambda = (t_m - c_.nav.t_s) / (t_end - c_.nav.t_s);
+      ImuIncrement part = scaled(rem, lambda);
+      part.t_s = t_m;
+      rem = scaled(rem, 1.0 - lambda);
+      propagate_sample(part);
+    } else if (t_m >= t_end - kSplitTolerance_s && rem.dt_s > 0.0) {
+      propagate_sample(rem);
+      rem.dt_s = 0.0;
+    }
+    flush_covariance();
+    const Fix fix = pending_.front();
+    pending_.pop_front();
+    apply_gnss(fix);
+  }
+  if (rem.dt_s > 0.0) propagate_sample(rem);
+
+  const MechanizationStep& st = c_.mech.last();
+  const bool stat = c_.detector.add(st.dt_s, st.omega_ib_b_rad_s, st.f_b_mps2);
+  c_.status = stat ? (c_.status | kStatusZuptActive) : (c_.status & ~kStatusZuptActive);
+  if (c_.acc_T_s >= opt_.cov_period_s) flush_covariance();
+  // ZUPT only without recent GNSS: with RTK it adds nothing, and the detector cannot tell a smooth
+  // start from rest (|f| ~ g) from standing still; the gate catches the rest.
+  const bool gnss_recent = c_.nav.t_s - c_.last_gnss_t_s < 1.0;
+  if (opt_.zupt.enabled && stat && !gnss_recent && c_.nav.v_n_mps.norm() < opt_.zupt.speed_max_mps &&
+      c_.nav.t_s - c_.last_zupt_t_s >= opt_.zupt.period_s) {
+    flush_covariance();
+    apply_measurement(zero_velocity_measurement(c_.nav, layout_, opt_.zupt.std_mps));
+    c_.last_zupt_t_s = c_.nav.t_s;
+  }
+  if (c_.nav.t_s - c_.last_gnss_t_s > 2.0)
+    c_.status |= kStatusGnssOutage;
+  else
+    c_.status &= ~kStatusGnssOutage;
+  if (!finite(c_.nav)) {
+    // Restore the last healthy state and open its covariance: never continue with NaN.
+    const std::uint32_t bits = c_.status;
+    c_ = last_good_;
+    c_.P *= 4.0;
+    c_.status = bits | kStatusStateReset;
+    ++faults_.state_resets;
+    return;
+  }
+  if (c_.nav.t_s - c_.last_health_t_s >= kHealthPeriod_s) check_health(true);
+}
+
+void NavFilter::propagate_sample(const ImuIncrement& raw_part) {
+  const ImuIncrement inc = c_.model.correct(raw_part);
+  const MechanizationStep& st = c_.mech.step(c_.nav, inc);
+  const double dt = st.dt_s;
+  c_.acc_T_s += dt;
+  c_.acc_dv_n += st.dv_sf_n_mps;
+  if (m_ == 0) return;
+  LinearizationPoint lp;
+  lp.C_b_n = c_.nav.C_b_n();
+  lp.omega_ib_b_rad_s = st.omega_ib_b_rad_s;
+  lp.f_b_mps2 = st.f_b_mps2;
+  const Mat3 Cdt = lp.C_b_n * dt;
+  const auto& blocks = layout_.blocks();
+  for (size_t i = 0; i < blocks.size(); ++i) {
+    const StateBlock& b = blocks[i];
+    const bool g = b.effect->drives_gyro(), a = b.effect->drives_accel();
+    if (!g && !a) continue;
+    b.effect->imu_jacobians(lp, J_gyro_[i], J_accel_[i]);
+    const int o = b.offset - kNavDim;
+    if (g) c_.acc_B.block(kAtt, o, 3, b.dim).noalias() -= Cdt * J_gyro_[i];
+    if (a) c_.acc_B.block(kVel, o, 3, b.dim).noalias() += Cdt * J_accel_[i];
+  }
+}
+
+void NavFilter::flush_covariance() {
+  const double T = c_.acc_T_s;
+  if (T <= 0.0) return;
+  // Nominal effect dynamics (e.g. a ramp integrating its rate).
+  bool nominal_changed = false;
+  for (const auto& b : layout_.blocks()) {
+    auto seg = c_.x_eff.segment(b.offset - kNavDim, b.dim);
+    const Eigen::VectorXd before = seg;
+    b.effect->propagate_nominal(seg, T);
+    nominal_changed |= (seg != before);
+  }
+  if (nominal_changed) rebuild_error_model();
+
+  GravityCache& gc = c_.mech.gravity();
+  Mat9 A = nav_error_F(c_.nav, Vec3::Zero(), gc.dg_dlat(), gc.dg_dh()) * T;
+  A.block<3, 3>(kVel, kAtt) = skew(c_.acc_dv_n);  // sum of [f_n x] dt, exact under rotation
+  Eigen::Matrix<double, 9, Eigen::Dynamic>& B = c_.acc_B;
+  for (const auto& b : layout_.blocks())
+    if (b.effect->drives_velocity_n()) {
+      Mat3X J = Mat3X::Zero(3, b.dim);
+      b.effect->velocity_n_jacobian(J);
+      B.block(kVel, b.offset - kNavDim, 3, b.dim) += J * T;
+    }
+
+  // Phi = I + F T + (F T)^2 / 2 with F = [[A, B], [0, D]]; D, E = D + D^2/2 kept sparse.
+  std::vector<Triplet> E;
+  for (const Triplet& t : F_ee_) E.push_back({t.row, t.col, t.value * T});
+  for (const Triplet& t1 : F_ee_)
+    for (const Triplet& t2 : F_ee_)
+      if (t1.col == t2.row) E.push_back({t1.row, t2.col, 0.5 * t1.value * t2.value * T * T});
+  const Mat9 Phi_nn = Mat9::Identity() + A + 0.5 * A * A;
+  Eigen::Matrix<double, 9, Eigen::Dynamic> Phi_ne = B + 0.5 * A * B;
+  for (const Triplet& t : F_ee_) Phi_ne.col(t.col) += 0.5 * t.value * T * B.col(t.row);
+
+  Eigen::MatrixXd& P = c_.P;
+  const int m = m_;
+  const Mat9 Pnn = P.topLeftCorner<9, 9>();
+  const Eigen::Matrix<double, 9, Eigen::Dynamic> Pne = P.topRightCorner(9, m);
+  const Eigen::Matrix<double, 9, Eigen::Dynamic> Y = Phi_nn * Pne;
+  const Eigen::Matrix<double, 9, Eigen::Dynamic> Z = Phi_ne * P.bottomRightCorner(m, m);
+  Mat9 Pnn_new = Phi_nn * Pnn * Phi_nn.transpose();
+  if (m > 0) {
+    const Mat9 YPt = Y * Phi_ne.transpose();
+    Pnn_new += YPt + YPt.transpose() + Z * Phi_ne.transpose();
+  }
+  Eigen::Matrix<double, 9, Eigen::Dynamic> X = Y + Z;
+  Eigen::Matrix<double, 9, Eigen::Dynamic> Pne_new = X;
+  for (const Triplet& t : E) Pne_new.col(t.row) += t.value * X.col(t.col);
+  if (!E.empty()) {
+    auto Pee = P.bottomRightCorner(m, m);
+    Eigen::MatrixXd W = Pee;
+    for (const Triplet& t : E) W.row(t.row) += t.value * Pee.row(t.col);
+    Eigen::MatrixXd V = W;
+    for (const Triplet& t : E) V.col(t.row) += t.value * W.col(t.col);
+    Pee = V;
+  }
+  P.topLeftCorner<9, 9>() = Pnn_new;
+  P.topRightCorner(9, m) = Pne_new;
+  P.bottomLeftCorner(m, 9) = Pne_new.transpose();
+
+  // Process noise: sensor white noise rotated into n, effect driving noise.
+  const Mat3 C = c_.nav.C_b_n();
+  Eigen::MatrixXd Qd;
+  const bool want = observer_ && observer_->wants_matrices();
+  const Mat3 Qv = C * opt_.vrw_mps_per_sqrt_s.cwiseAbs2().asDiagonal() * C.transpose() * T;
+  const Mat3 Qp = C * opt_.arw_rad_per_sqrt_s.cwiseAbs2().asDiagonal() * C.transpose() * T;
+  P.block<3, 3>(kVel, kVel) += Qv;
+  P.block<3, 3>(kAtt, kAtt) += Qp;
+  P.diagonal().tail(m) += q_c_ * T;
+  if (want) {
+    const int n = kNavDim + m;
+    Eigen::MatrixXd Phi = Eigen::MatrixXd::Identity(n, n);
+    Phi.topLeftCorner<9, 9>() = Phi_nn;
+    Phi.topRightCorner(9, m) = Phi_ne;
+    for (const Triplet& t : E) Phi(kNavDim + t.row, kNavDim + t.col) += t.value;
+    Qd = Eigen::MatrixXd::Zero(n, n);
+    Qd.block<3, 3>(kVel, kVel) = Qv;
+    Qd.block<3, 3>(kAtt, kAtt) = Qp;
+    Qd.diagonal().tail(m) = q_c_ * T;
+    observer_->on_propagation(c_.nav.t_s, T, Phi, Qd);
+  }
+
+  c_.acc_T_s = 0.0;
+  c_.acc_dv_n.setZero();
+  B.setZero();
+  check_health(false);
+}
+
+LinearizationPoint NavFilter::linearization_point() const {
+  LinearizationPoint lp;
+  const MechanizationStep& st = c_.mech.last();
+  lp.C_b_n = c_.nav.C_b_n();
+  lp.omega_ib_b_rad_s = st.omega_ib_b_rad_s;
+  lp.f_b_mps2 = st.f_b_mps2;
+  lp.a_n_mps2 = st.a_n_mps2;
+  lp.lever_arm_b_m = c_.model.lever_arm_b_m;
+  lp.omega_in_n_rad_s = earth::omega_ie_n(c_.nav.pos.lat_rad) +
+                        earth::omega_en_n(c_.nav.pos.lat_rad, c_.nav.pos.h_m, c_.nav.v_n_mps);
+  lp.v_ant_n_mps = antenna_velocity_n(c_.nav, lp);
+  return lp;
+}
+
+void NavFilter::add_gnss(const GnssFix& fix) {
+  if (!std::isfinite(fix.t_s) || !std::isfinite(fix.pos.lat_rad) || !std::isfinite(fix.pos.lon_rad) ||
+      !std::isfinite(fix.pos.h_m) || !fix.pos_std_ned_m.allFinite() || (fix.pos_std_ned_m.array() <= 0).any() ||
+      (fix.has_velocity && (!fix.vel_n_mps.allFinite() || !(fix.vel_std_n_mps.array() > 0).all()))) {
+    c_.status |= kStatusMeasurementRejected;
+    ++faults_.measurements_rejected;
+    return;
+  }
+  if (!c_.initialized) return;
+  const Fix f{next_fix_id_++, 0.0, fix};
+  if (fix.t_s - c_.model.time_offset_s >= c_.nav.t_s - kSplitTolerance_s) {
+    enqueue(f);
+    return;
+  }
+  rewind_and_apply(f);
+}
+
+void NavFilter::enqueue(const Fix& f) {
+  const auto at = std::upper_bound(pending_.begin(), pending_.end(), f.fix.t_s,
+                                   [](double t, const Fix& g) { return t < g.fix.t_s; });
+  pending_.insert(at, f);
+}
+
+void NavFilter::rewind_and_apply(const Fix& fix) {
+  const double t_apply = fix.fix.t_s - c_.model.time_offset_s;
+  int k = static_cast<int>(snapshots_.size()) - 1;
+  while (k >= 0 && snapshots_[k].nav.t_s > t_apply + kSplitTolerance_s) --k;
+  if (k < 0 || opt_.history_s <= 0.0) {
+    c_.status |= kStatusLateDropped;
+    ++faults_.late_dropped;
+    return;
+  }
+  // Fixes applied now but not contained in the snapshot are applied again, in order, with the late one.
+  const std::deque<Fix> applied_now = c_.applied;
+  c_ = snapshots_[k];
+  snapshots_.erase(snapshots_.begin() + k + 1, snapshots_.end());
+  for (const Fix& a : applied_now) {
+    const bool in_snapshot =
+        std::any_of(c_.applied.begin(), c_.applied.end(), [&](const Fix& b) { return b.id == a.id; });
+    if (!in_snapshot) enqueue(a);
+  }
+  enqueue(fix);
+  const double t_snap = c_.nav.t_s;
+  replaying_ = true;
+  for (const ImuIncrement& raw : imu_history_)
+    if (raw.t_s > t_snap + 1e-9) {
+      process_imu(raw);
+      take_snapshot();
+    }
+  replaying_ = false;
+}
+
+void NavFilter::apply_gnss(const Fix& f) {
+  Fix applied = f;
+  applied.t_apply_s = c_.nav.t_s;
+  c_.applied.push_back(applied);
+  while (!c_.applied.empty() && c_.applied.front().t_apply_s < c_.nav.t_s - opt_.history_s) c_.applied.pop_front();
+  const GnssFix& fix = f.fix;
+  apply_measurement(gnss_position_measurement(c_.nav, linearization_point(), layout_, fix));
+  if (fix.has_velocity && opt_.use_gnss_velocity)
+    apply_measurement(gnss_velocity_measurement(c_.nav, linearization_point(), layout_, fix));
+}
+
+void NavFilter::apply_measurement(const Measurement& m) {
+  const int kind = static_cast<int>(m.kind);
+  const bool force = c_.consecutive_rejects[kind] >= opt_.gate_max_consecutive_rejects;
+  InnovationRecord rec;
+  rec.t_s = c_.nav.t_s;
+  rec.replayed = replaying_;
+  const bool want = observer_ && observer_->wants_matrices();
+  if (force) {
+    // Re-synchronise: the state has diverged from a measurement stream it kept rejecting, so open the
+    // measured block's variance by the innovation before accepting.
+    const int block = m.kind == MeasurementKind::kGnssPosition ? kPos : kVel;
+    c_.P.diagonal().segment<3>(block) += m.y.cwiseAbs2();
+  }
+  const bool ok = kalman_update(c_.P, m, gate_, force, rec, dx_, want ? &K_ : nullptr);
+  if (ok) {
+    correct(dx_);
+    if (force) {
+      c_.status |= kStatusGateResync;
+      ++faults_.gate_resyncs;
+    }
+    c_.consecutive_rejects[kind] = 0;
+    if (m.kind != MeasurementKind::kZeroVelocity) {
+      c_.last_gnss_t_s = c_.nav.t_s;
+      c_.status &= ~(kStatusGnssRejected | kStatusGateResync);
+    }
+  } else {
+    ++c_.consecutive_rejects[kind];
+    ++faults_.gate_rejections;
+    if (m.kind != MeasurementKind::kZeroVelocity) c_.status |= kStatusGnssRejected;
+  }
+  innovations_.push_back(rec);
+  if (want) observer_->on_update(rec, m.H, K_);
+  check_health(false);
+}
+
+void NavFilter::correct(const Eigen::VectorXd& dx) {
+  c_.nav.pos = earth::offset_ned(c_.nav.pos, -dx.segment<3>(kPos));
+  c_.nav.v_n_mps -= dx.segment<3>(kVel);
+  // C_hat = (I - [phi x]) C  =>  C = exp([phi x]) C_hat
+  c_.nav.q_b_n = (quat_from_rotvec(dx.segment<3>(kAtt)) * c_.nav.q_b_n).normalized();
+  if (m_ > 0) {
+    c_.x_eff -= dx.tail(m_);
+    rebuild_error_model();
+  }
+}
+
+void NavFilter::check_health(bool full) {
+  const Eigen::MatrixXd& P = c_.P;
+  bool ok = P.diagonal().allFinite() && (P.diagonal().array() > 0.0).all();
+  if (ok && full) {
+    c_.last_health_t_s = c_.nav.t_s;
+    ok = P.allFinite() && Eigen::LLT<Eigen::MatrixXd>(P).info() == Eigen::Success;
+    if (ok && finite(c_.nav)) last_good_ = c_;
+  }
+  if (!ok) reset_covariance();
+}
+
+void NavFilter::reset_covariance() {
+  // Keep each variance that is still usable, otherwise fall back to the prior; drop the correlations.
+  const int n = kNavDim + m_;
+  Eigen::VectorXd var(n);
+  const NavStd fallback;
+  Eigen::VectorXd prior(n);
+  prior << Vec3::Constant(10.0), Vec3::Constant(1.0), Vec3::Constant(5.0 * kDegToRad), prior_std_;
+  for (int i = 0; i < n; ++i) {
+    const double d = c_.P(i, i);
+    var(i) = (std::isfinite(d) && d > 0.0) ? std::max(d, 1e-12) : prior(i) * prior(i);
+  }
+  c_.P = var.asDiagonal();
+  c_.status |= kStatusCovarianceReset;
+  ++faults_.covariance_resets;
+}
+
+void NavFilter::set_covariance(const Eigen::MatrixXd& P) {
+  const int n = kNavDim + m_;
+  if (P.rows() != n || P.cols() != n) throw std::invalid_argument("covariance of the wrong size");
+  c_.P = P;
+  check_health(true);
+}
+
+NavStd NavFilter::nav_std() const {
+  NavStd s;
+  s.pos_ned_m = c_.P.diagonal().segment<3>(kPos).cwiseSqrt();
+  s.vel_n_mps = c_.P.diagonal().segment<3>(kVel).cwiseSqrt();
+  s.att_rad = c_.P.diagonal().segment<3>(kAtt).cwiseSqrt();
+  return s;
+}
+
+std::vector<InnovationRecord> NavFilter::take_innovations() {
+  std::vector<InnovationRecord> out;
+  out.swap(innovations_);
+  return out;
+}
+
+const char* measurement_name(MeasurementKind k) {
+  switch (k) {
+    case MeasurementKind::kGnssPosition: return "gnss_position";
+    case MeasurementKind::kGnssVelocity: return "gnss_velocity";
+    case MeasurementKind::kZeroVelocity: return "zupt";
+  }
+  return "?";
+}
+
+}  // namespace ldv::est

@@ -1,0 +1,126 @@
+#pragma once
+// NavFilter: the error-state EKF around the strapdown INS. The one engine used by `ldv nav`,
+// the live fusion service and `ldv diagnose`.
+//
+// Feeding: add_imu() for every raw IMU increment, in time order; add_gnss() for every fix, at any time:
+//  - a fix ahead of the IMU waits in a queue and is applied exactly at its epoch (label - time_offset):
+//    the IMU interval containing it is split there (offline use: feed fixes before the IMU reaches them);
+//  - a late fix (epoch already passed, up to options.history_s) rewinds to the last snapshot before its
+//    epoch and re-processes the kept raw IMU history with the fix inserted, so the result equals the
+//    on-time result (live use: GNSS solutions arrive ~0.1-1 s late). Snapshots: every 0.2 s.
+// Covariance: accumulated F over IMU samples, propagated at most every options.cov_period_s and at every
+// measurement with Phi = I + F T + (F T)^2 / 2, exploiting the nav / effect block structure.
+#include <cstdint>
+#include <deque>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "common/formats/nav_types.hpp"
+#include "estimator/filter/records.hpp"
+#include "estimator/filter/status.hpp"
+#include "estimator/ins/mechanization.hpp"
+#include "estimator/options.hpp"
+#include "estimator/state/state_layout.hpp"
+#include "estimator/update/measurement.hpp"
+#include "estimator/update/zupt.hpp"
+
+namespace ldv::est {
+
+class NavFilter {
+ public:
+  explicit NavFilter(FilterOptions options);
+
+  // Starts the filter at `s` with this uncertainty; effect blocks start at their priors.
+  void initialize(const NavState& s, const NavStd& std);
+  bool initialized() const { return c_.initialized; }
+
+  void add_imu(const ImuIncrement& raw);
+  void add_gnss(const GnssFix& fix);
+
+  const NavState& state() const { return c_.nav; }
+  // Covariance at the last covariance epoch (lags state() by less than cov_period_s).
+  const Eigen::MatrixXd& covariance() const { return c_.P; }
+  // Replaces the covariance (tools / tests). A matrix that is not finite and PD is reset and flagged.
+  void set_covariance(const Eigen::MatrixXd& P);
+  NavStd nav_std() const;
+  // Nominal estimates of the effect states (layout offsets minus 9), SI units.
+  const Eigen::VectorXd& effect_state() const { return c_.x_eff; }
+  const ImuErrorModel& error_model() const { return c_.model; }
+  const StateLayout& layout() const { return layout_; }
+  const FilterOptions& options() const { return opt_; }
+  std::uint32_t status() const { return c_.status; }
+  const FaultCounters& faults() const { return faults_; }
+  // Angular rate and specific force of the last sample, error-compensated (body axes).
+  const MechanizationStep& last_step() const { return c_.mech.last(); }
+  // Records since the last call (pre-update innovations with gate decisions).
+  std::vector<InnovationRecord> take_innovations();
+  const std::vector<InnovationRecord>& innovations() const { return innovations_; }
+  void set_observer(FilterObserver* observer) { observer_ = observer; }
+  double gate_threshold() const { return gate_; }
+
+ private:
+  struct Fix {
+    long id;
+    double t_apply_s;
+    GnssFix fix;
+  };
+  // Everything that changes while filtering: copied into snapshots for late measurements.
+  struct Core {
+    bool initialized = false;
+    NavState nav;
+    Eigen::VectorXd x_eff;
+    Eigen::MatrixXd P;
+    ImuErrorModel model;
+    Mechanization mech;
+    double acc_T_s = 0.0;
+    Vec3 acc_dv_n = Vec3::Zero();
+    Eigen::Matrix<double, 9, Eigen::Dynamic> acc_B;  // accumulated F_ne * dt
+    StaticDetector detector{0.5, 0.05, 0.01};
+    double last_zupt_t_s = -1e300;
+    double last_gnss_t_s = -1e300;
+    double last_health_t_s = -1e300;
+    int consecutive_rejects[3] = {0, 0, 0};
+    std::uint32_t status = 0;
+    std::deque<Fix> applied;  // fixes applied within the history horizon (what a snapshot contains)
+  };
+
+  void process_imu(const ImuIncrement& raw);
+  void propagate_sample(const ImuIncrement& raw_part);
+  void flush_covariance();
+  void apply_gnss(const Fix& fix);
+  void enqueue(const Fix& fix);
+  void apply_measurement(const Measurement& m);
+  void correct(const Eigen::VectorXd& dx);
+  void rebuild_error_model();
+  LinearizationPoint linearization_point() const;
+  void check_health(bool full);
+  void reset_covariance();
+  void take_snapshot();
+  void rewind_and_apply(const Fix& fix);
+
+  FilterOptions opt_;
+  StateLayout layout_;
+  int m_ = 0;  // effect states
+  Eigen::VectorXd prior_std_;
+  std::vector<Triplet> F_ee_;  // effect dynamics, effect-local indices
+  Eigen::VectorXd q_c_;
+  std::vector<Mat3X> J_gyro_, J_accel_;  // per-block workspaces
+  double gate_ = 0.0;
+
+  Core c_;
+  Core last_good_;
+  std::deque<Fix> pending_;  // sorted by time tag
+  long next_fix_id_ = 0;
+  std::deque<ImuIncrement> imu_history_;
+  std::deque<Core> snapshots_;
+  bool replaying_ = false;
+
+  FaultCounters faults_;
+  std::vector<InnovationRecord> innovations_;
+  FilterObserver* observer_ = nullptr;
+  Eigen::VectorXd dx_;
+  Eigen::MatrixXd K_;
+};
+
+}  // namespace ldv::est

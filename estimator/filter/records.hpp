@@ -1,0 +1,34 @@
+#pragma once
+// What the filter reports per measurement, and the optional observer hook through which
+// `ldv diagnose` sees transition matrices, H and gains.
+#include <Eigen/Core>
+
+#include "estimator/effects/effect.hpp"
+
+namespace ldv::est {
+
+const char* measurement_name(MeasurementKind k);
+
+// One measurement's pre-update innovation (predicted minus measured) and its gate decision.
+struct InnovationRecord {
+  double t_s = 0.0;  // IMU-time epoch the measurement was applied at
+  MeasurementKind kind = MeasurementKind::kGnssPosition;
+  Vec3 innovation = Vec3::Zero();  // z_hat - z: NED [m] for position, [m/s] for velocities
+  Mat3 S = Mat3::Zero();           // innovation covariance H P H^T + R
+  double nis = 0.0;                // innovation^T S^-1 innovation
+  bool accepted = true;
+  bool replayed = false;           // recomputed while re-processing a late measurement
+};
+
+class FilterObserver {
+ public:
+  virtual ~FilterObserver() = default;
+  // Whether on_propagation / on_update should receive dense matrices (costs time).
+  virtual bool wants_matrices() const { return false; }
+  // Covariance propagation over (t_s - dt_s, t_s]: P+ = Phi P Phi^T + Qd.
+  virtual void on_propagation(double t_s, double dt_s, const Eigen::MatrixXd& Phi, const Eigen::MatrixXd& Qd) {}
+  // A measurement: its record, H (3 x n) and gain K (n x 3; zero when rejected).
+  virtual void on_update(const InnovationRecord& r, const Eigen::MatrixXd& H, const Eigen::MatrixXd& K) {}
+};
+
+}  // namespace ldv::est

@@ -1,0 +1,108 @@
+#include "estimator/ins/alignment.hpp"
+
+#include <cmath>
+
+#include "common/geo/earth_model.hpp"
+
+namespace ldv::est {
+
+Vec3 level_from_specific_force(const Vec3& f) {
+  // Static: f_b = C_n_b (0, 0, -g) = g (sin p, -sin r cos p, -cos r cos p).
+  const double roll = std::atan2(-f.y(), -f.z());
+  const double pitch = std::atan2(f.x(), std::sqrt(f.y() * f.y() + f.z() * f.z()));
+  return {roll, pitch, 0.0};
+}
+
+double gyrocompass_yaw(double roll, double pitch, const Vec3& w_b) {
+  // Rotate the sensed Earth rate into the levelled frame (yaw 0): w_l = Rz(-yaw) w_ie_n, whose
+  // horizontal part is Omega cos(lat) (cos yaw, -sin yaw).
+  const Vec3 w_l = C_b_n_from_euler(Vec3(roll, pitch, 0.0)) * w_b;
+  return std::atan2(-w_l.y(), w_l.x());
+}
+
+double gyrocompass_yaw_std(double lat, double bias, double arw, double T) {
+  const double sigma_w = std::sqrt(bias * bias + arw * arw / T);
+  return sigma_w / (earth::kOmegaIe_rad_s * std::cos(lat));
+}
+
+Aligner::Aligner(AlignmentOptions o) : o_(o), detector_(0.5, 0.05, 0.5 * kDegToRad) {}
+
+void Aligner::add_imu(const ImuIncrement& raw) {
+  t_s_ = raw.t_s;
+  const bool stat = detector_.add(raw.dt_s, raw.dtheta_b_rad / raw.dt_s, raw.dvel_b_mps / raw.dt_s);
+  if (!moving_seen_) {
+    // Accumulate from the start until the first motion (the detector needs one full window first).
+    const bool window_full = static_s_ >= 0.6;
+    if (window_full && !stat) {
+      moving_seen_ = true;
+    } else {
+      sum_dv_ += raw.dvel_b_mps;
+      sum_dtheta_ += raw.dtheta_b_rad;
+      static_s_ += raw.dt_s;
+    }
+  }
+  if (!levelled_ && (moving_seen_ || static_s_ >= o_.static_min_s)) level();
+  if (levelled_ && moving_seen_) q_b_l_ = (q_b_l_ * quat_from_rotvec(raw.dtheta_b_rad)).normalized();
+}
+
+void Aligner::level() {
+  const Vec3 rpy = level_from_specific_force(sum_dv_ / std::max(static_s_, 1e-9));
+  q_b_l_ = quat_from_euler(rpy);
+  // Levelling error = accelerometer bias / g (plus the gyro-carried drift, small over seconds).
+  const double s = std::max(o_.accel_bias_std_mps2 / 9.8, 0.05 * kDegToRad);
+  level_std_rad_ = Vec3(s, s, 0.0);
+  if (static_s_ < 1.0) level_std_rad_ = Vec3::Constant(5.0 * kDegToRad);  // no static start: rough
+  levelled_ = true;
+}
+
+void Aligner::add_gnss(const GnssFix& fix) {
+  if (result_ || !levelled_) {
+    prev_fix_ = fix;
+    return;
+  }
+  NavState s;
+  s.t_s = t_s_;
+  NavStd sd;
+  sd.pos_ned_m = fix.pos_std_ned_m.cwiseMax(0.05) * 2.0;
+  const Vec3 rpy_l = euler_from_C_b_n(q_b_l_.toRotationMatrix());
+
+  // Gyrocompassing while still static, when the gyros can do it.
+  const double yaw_std = gyrocompass_yaw_std(fix.pos.lat_rad, o_.gyro_bias_std_rad_s, o_.arw_rad_per_sqrt_s, static_s_);
+  if (!moving_seen_ && static_s_ >= o_.gyrocompass_min_s && yaw_std <= o_.gyrocompass_max_yaw_std_rad) {
+    const Vec3 rpy(rpy_l.x(), rpy_l.y(), gyrocompass_yaw(rpy_l.x(), rpy_l.y(), sum_dtheta_ / static_s_));
+    s.q_b_n = quat_from_euler(rpy);
+    s.v_n_mps.setZero();
+    sd.vel_n_mps = Vec3::Constant(0.05);
+    sd.att_rad = Vec3(level_std_rad_.x(), level_std_rad_.y(), 2.0 * yaw_std);
+    method_ = "levelling + gyrocompassing";
+  } else {
+    // Course over ground, from the fix's velocity or from two consecutive positions.
+    Vec3 v_n;
+    double v_std = 0.0;
+    if (fix.has_velocity) {
+      v_n = fix.vel_n_mps;
+      v_std = fix.vel_std_n_mps.maxCoeff();
+    } else if (prev_fix_ && fix.t_s - prev_fix_->t_s > 0.0 && fix.t_s - prev_fix_->t_s <= 1.5) {
+      v_n = earth::ned_between(prev_fix_->pos, fix.pos) / (fix.t_s - prev_fix_->t_s);
+      v_std = 0.5;  // difference over up to 1 s while accelerating
+    } else {
+      prev_fix_ = fix;
+      return;
+    }
+    prev_fix_ = fix;
+    if (v_n.head<2>().norm() < o_.speed_min_mps) return;
+    const double cog = std::atan2(v_n.y(), v_n.x());
+    const Vec3 x_l = q_b_l_ * Vec3::UnitX();
+    const double heading_l = std::atan2(x_l.y(), x_l.x());
+    s.q_b_n = (Quat(Eigen::AngleAxisd(cog - heading_l, Vec3::UnitZ())) * q_b_l_).normalized();
+    s.v_n_mps = v_n;
+    sd.vel_n_mps = Vec3::Constant(std::max(v_std, 0.05) * 2.0);
+    sd.att_rad = Vec3(level_std_rad_.x() + 0.5 * kDegToRad, level_std_rad_.y() + 0.5 * kDegToRad, o_.cog_yaw_std_rad);
+    method_ = "levelling + GNSS course over ground";
+  }
+  // The fix is at the antenna: move to the IMU.
+  s.pos = earth::offset_ned(fix.pos, -(s.C_b_n() * o_.lever_arm_b_m));
+  result_ = std::make_pair(s, sd);
+}
+
+}  // namespace ldv::est

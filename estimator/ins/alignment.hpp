@@ -1,0 +1,64 @@
+#pragma once
+// Alignment without truth (DESIGN.md section 2):
+//  1. coarse levelling from the mean specific force while static, for any mounting (upside down too:
+//     roll and pitch come from atan2 of the full gravity direction);
+//  2. heading by gyrocompassing from the mean angular rate while static, when the gyros resolve Earth
+//     rate well enough (theory: sigma_yaw = sigma_w_east / (Omega cos(lat)));
+//  3. otherwise heading = course over ground from GNSS velocity once moving faster than speed_min_mps
+//     (the body x axis is assumed to point along the velocity), with the attitude carried from the
+//     levelling by integrating the gyros in the meantime.
+#include <optional>
+#include <string>
+
+#include "common/formats/nav_types.hpp"
+#include "estimator/ins/nav_state.hpp"
+#include "estimator/update/zupt.hpp"
+
+namespace ldv::est {
+
+// Roll and pitch [rad] from the mean specific force f_b [m/s^2] of a static IMU.
+Vec3 level_from_specific_force(const Vec3& f_b_mps2);
+// Yaw [rad] from the mean static angular rate w_b [rad/s] given roll and pitch.
+double gyrocompass_yaw(double roll_rad, double pitch_rad, const Vec3& omega_ib_b_rad_s);
+// Theoretical 1-sigma of gyrocompass yaw for this gyro bias [rad/s], white noise [rad/sqrt(s)] and averaging time.
+double gyrocompass_yaw_std(double lat_rad, double gyro_bias_rad_s, double arw_rad_per_sqrt_s, double averaging_s);
+
+struct AlignmentOptions {
+  double gyro_bias_std_rad_s = 1.0 * kDegToRad / 3600.0;
+  double arw_rad_per_sqrt_s = 0.003 * kDegToRad;
+  double accel_bias_std_mps2 = 1e-3 * 9.8;
+  double static_min_s = 5.0;        // levelling needs this much static data
+  double gyrocompass_min_s = 60.0;  // and gyrocompassing this much
+  double gyrocompass_max_yaw_std_rad = 3.0 * kDegToRad;  // use it only when theory promises this
+  double speed_min_mps = 2.0;       // course over ground usable above this
+  double cog_yaw_std_rad = 3.0 * kDegToRad;
+  Vec3 lever_arm_b_m = Vec3::Zero();
+};
+
+class Aligner {
+ public:
+  explicit Aligner(AlignmentOptions o);
+  void add_imu(const ImuIncrement& raw);
+  void add_gnss(const GnssFix& fix);
+  bool aligned() const { return result_.has_value(); }
+  const NavState& state() const { return result_->first; }
+  const NavStd& std() const { return result_->second; }
+  const std::string& method() const { return method_; }
+
+ private:
+  void level();
+  AlignmentOptions o_;
+  StaticDetector detector_;
+  double t_s_ = 0.0;
+  bool moving_seen_ = false;
+  Vec3 sum_dv_ = Vec3::Zero(), sum_dtheta_ = Vec3::Zero();
+  double static_s_ = 0.0;
+  bool levelled_ = false;
+  Quat q_b_l_ = Quat::Identity();  // body to a levelled frame of arbitrary yaw, carried by the gyros
+  Vec3 level_std_rad_ = Vec3::Zero();
+  std::optional<GnssFix> prev_fix_;
+  std::optional<std::pair<NavState, NavStd>> result_;
+  std::string method_;
+};
+
+}  // namespace ldv::est

@@ -1,0 +1,71 @@
+#pragma once
+// Every setting of the estimator, in SI units, with one place that prints it (engineering units).
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "common/math/rotation.hpp"
+
+namespace ldv::est {
+
+// Stochastic model of a 3-axis effect block (prior + own dynamics).
+struct BlockOptions {
+  enum class Process { kConstant, kRandomWalk, kGaussMarkov };
+  Vec3 init = Vec3::Zero();      // prior mean
+  Vec3 init_std = Vec3::Zero();  // prior 1-sigma
+  Process process = Process::kConstant;
+  Vec3 sigma = Vec3::Zero();     // Gauss-Markov steady-state 1-sigma (q_c = 2 sigma^2 / T)
+  double corr_time_s = 3600.0;   // Gauss-Markov correlation time
+  Vec3 rw_density = Vec3::Zero();  // random walk: sigma growth per sqrt(s) (q_c = rw^2)
+};
+
+// The paper's multi-component bias, per axis: [constant, Gauss-Markov, random walk, ramp value, ramp rate];
+// the bias is constant + Gauss-Markov + random walk + ramp value; d(ramp value)/dt = ramp rate (constant).
+struct MovingBiasOptions {
+  Vec3 constant_std = Vec3::Zero();
+  Vec3 gm_sigma = Vec3::Zero();
+  double gm_corr_time_s = 3600.0;
+  Vec3 rw_density = Vec3::Zero();     // K [unit/sqrt(s)]
+  Vec3 ramp_rate_std = Vec3::Zero();  // prior of R [unit/s]
+};
+
+struct ZuptOptions {
+  bool enabled = true;
+  double window_s = 0.5;           // detector window
+  double f_std_mps2 = 0.05;        // std of |f| over the window below this
+  double omega_max_rad_s = 0.5 * kDegToRad;  // mean |omega| over the window below this
+  double speed_max_mps = 0.3;      // and the filter's own speed below this (no false ZUPT at constant velocity)
+  double period_s = 0.2;           // apply at most this often
+  double std_mps = 0.01;           // measurement noise of the zero velocity
+};
+
+struct FilterOptions {
+  std::string model = "kfgins21";
+  std::vector<std::string> add, drop;
+
+  Vec3 arw_rad_per_sqrt_s = Vec3::Constant(0.003 * kDegToRad);  // gyro white noise
+  Vec3 vrw_mps_per_sqrt_s = Vec3::Constant(0.001);              // accel white noise
+
+  BlockOptions gyro_bias, accel_bias, gyro_scale, accel_scale;
+  BlockOptions gyro_misalignment, accel_misalignment, g_sensitivity;
+  BlockOptions lever_arm, gravity_anomaly;
+  double time_offset_init_s = 0.0, time_offset_std_s = 0.01;
+  MovingBiasOptions gyro_moving_bias, accel_moving_bias;
+
+  double cov_period_s = 0.1;         // covariance propagated at least this often (and at each measurement)
+  double gate_probability = 0.9999;  // chi-square gate on the NIS of each 3-D measurement
+  int gate_max_consecutive_rejects = 10;  // then accept (re-synchronise) and flag
+  bool use_gnss_velocity = true;
+  ZuptOptions zupt;
+  double history_s = 3.0;            // how late a measurement may arrive (IMU history kept)
+
+  FilterOptions();
+  void print(std::ostream& out) const;
+};
+
+// Effect names of a named model (ins15, kfgins21, geoldv51) after --add/--drop; throws
+// std::invalid_argument naming the unknown model or effect.
+std::vector<std::string> resolve_model(const std::string& model, const std::vector<std::string>& add,
+                                       const std::vector<std::string>& drop);
+
+}  // namespace ldv::est

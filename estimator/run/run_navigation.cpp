@@ -1,0 +1,129 @@
+#include "estimator/run/run_navigation.hpp"
+
+#include <algorithm>
+
+#include "common/geo/earth_model.hpp"
+#include "common/io/input_error.hpp"
+#include "estimator/ins/alignment.hpp"
+
+namespace ldv::est {
+namespace {
+
+template <typename T>
+T ldv_key(const KfGinsConfig& cfg, const char* key, T fallback) {
+  if (!cfg.ldv.IsDefined() || cfg.ldv.IsNull() || !cfg.ldv[key]) return fallback;
+  try {
+    return cfg.ldv[key].as<T>();
+  } catch (const YAML::Exception&) {
+    throw InputError(cfg.config_path, cfg.ldv[key].Mark().line + 1, std::string("key 'ldv.") + key + "': wrong type");
+  }
+}
+
+}  // namespace
+
+FilterOptions options_from_kfgins(const KfGinsConfig& cfg) {
+  FilterOptions o;
+  const KfGinsImuNoise& n = cfg.imu_noise;
+  o.arw_rad_per_sqrt_s = n.arw_rad_per_sqrt_s;
+  o.vrw_mps_per_sqrt_s = n.vrw_mps_per_sqrt_s;
+  auto gm = [&](BlockOptions& b, const Vec3& init, const std::optional<Vec3>& init_std, const Vec3& sigma) {
+    // KF-GINS: first-order Gauss-Markov with corrtime; prior std defaults to the process std.
+    b.init = init;
+    b.init_std = init_std.value_or(sigma);
+    b.process = BlockOptions::Process::kGaussMarkov;
+    b.sigma = sigma;
+    b.corr_time_s = n.corr_time_s;
+  };
+  gm(o.gyro_bias, cfg.init_gyro_bias_rad_s, cfg.init_gyro_bias_std_rad_s, n.gyro_bias_std_rad_s);
+  gm(o.accel_bias, cfg.init_accel_bias_mps2, cfg.init_accel_bias_std_mps2, n.accel_bias_std_mps2);
+  gm(o.gyro_scale, cfg.init_gyro_scale, cfg.init_gyro_scale_std, n.gyro_scale_std);
+  gm(o.accel_scale, cfg.init_accel_scale, cfg.init_accel_scale_std, n.accel_scale_std);
+  o.gyro_moving_bias.constant_std = o.gyro_bias.init_std;
+  o.gyro_moving_bias.gm_sigma = n.gyro_bias_std_rad_s;
+  o.gyro_moving_bias.gm_corr_time_s = n.corr_time_s;
+  o.accel_moving_bias.constant_std = o.accel_bias.init_std;
+  o.accel_moving_bias.gm_sigma = n.accel_bias_std_mps2;
+  o.accel_moving_bias.gm_corr_time_s = n.corr_time_s;
+  o.lever_arm.init = cfg.antenna_lever_b_m;
+
+  o.model = ldv_key<std::string>(cfg, "model", o.model);
+  o.add = ldv_key<std::vector<std::string>>(cfg, "add", {});
+  o.drop = ldv_key<std::vector<std::string>>(cfg, "drop", {});
+  o.cov_period_s = ldv_key<double>(cfg, "cov_period_s", o.cov_period_s);
+  o.gate_probability = ldv_key<double>(cfg, "gate_probability", o.gate_probability);
+  o.use_gnss_velocity = ldv_key<bool>(cfg, "use_gnss_velocity", o.use_gnss_velocity);
+  o.zupt.enabled = ldv_key<bool>(cfg, "zupt", o.zupt.enabled);
+  o.history_s = ldv_key<double>(cfg, "history_s", 0.0);  // offline: fixes are never late
+  return o;
+}
+
+RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
+                          const KfGinsConfig& cfg, NavFilter& filter, const RunCallbacks& cb) {
+  RunSummary sum;
+  const double t0 = cfg.start_time_s, t1 = cfg.end_time_s < 0 ? 1e300 : cfg.end_time_s;
+  auto first = std::lower_bound(imu.begin(), imu.end(), t0, [](const ImuIncrement& a, double t) { return a.t_s < t; });
+  size_t i = static_cast<size_t>(first - imu.begin());
+  size_t g = 0;
+  if (i >= imu.size() || imu[i].t_s > t1) throw InputError(cfg.imu_path, 0, "no IMU samples between starttime and endtime");
+
+  const bool given = cfg.init_pos && cfg.init_vel_n_mps && cfg.init_rpy_rad;
+  if (given) {
+    NavState s;
+    // The given state holds at the start of the first increment (KF-GINS: at starttime).
+    s.t_s = std::max(t0, imu[i].t_s - imu[i].dt_s);
+    s.pos = *cfg.init_pos;
+    s.v_n_mps = *cfg.init_vel_n_mps;
+    s.q_b_n = quat_from_euler(*cfg.init_rpy_rad);
+    NavStd sd;
+    sd.pos_ned_m = cfg.init_pos_std_ned_m;
+    sd.vel_n_mps = cfg.init_vel_std_n_mps;
+    sd.att_rad = cfg.init_att_std_rad;
+    filter.initialize(s, sd);
+    sum.initialisation = "given";
+  } else {
+    AlignmentOptions ao;
+    const FilterOptions& fo = filter.options();
+    ao.gyro_bias_std_rad_s = fo.gyro_bias.init_std.maxCoeff();
+    ao.arw_rad_per_sqrt_s = fo.arw_rad_per_sqrt_s.maxCoeff();
+    ao.accel_bias_std_mps2 = fo.accel_bias.init_std.maxCoeff();
+    ao.lever_arm_b_m = fo.lever_arm.init;
+    Aligner aligner(ao);
+    for (; i < imu.size() && imu[i].t_s <= t1 && !aligner.aligned(); ++i) {
+      aligner.add_imu(imu[i]);
+      for (; g < gnss.size() && gnss[g].t_s <= imu[i].t_s; ++g) aligner.add_gnss(gnss[g]);
+    }
+    if (!aligner.aligned())
+      throw InputError(cfg.gnss_path, 0,
+                       "could not align: no static period with usable gyros and no GNSS speed above 2 m/s "
+                       "(give initpos/initvel/initatt in the configuration)");
+    filter.initialize(aligner.state(), aligner.std());
+    sum.initialisation = aligner.method();
+  }
+  sum.t_start_s = filter.state().t_s;
+  // Fixes before the initial epoch are not used.
+  while (g < gnss.size() && gnss[g].t_s <= filter.state().t_s) ++g;
+
+  const size_t n_total = imu.size();
+  const size_t progress_step = std::max<size_t>(1, n_total / 50);
+  for (; i < imu.size() && imu[i].t_s <= t1; ++i) {
+    // Hand each fix over before the IMU passes its epoch: it is applied exactly there.
+    for (; g < gnss.size() && gnss[g].t_s <= imu[i].t_s + 0.5; ++g) {
+      filter.add_gnss(gnss[g]);
+      ++sum.gnss_fixes;
+    }
+    filter.add_imu(imu[i]);
+    ++sum.imu_samples;
+    if (cb.on_innovation)
+      for (const auto& r : filter.take_innovations()) cb.on_innovation(r);
+    else if (filter.innovations().size() > 4096)
+      filter.take_innovations();
+    if (cb.on_epoch) cb.on_epoch(filter);
+    if (cb.on_progress && i % progress_step == 0) cb.on_progress(static_cast<double>(i) / n_total);
+  }
+  sum.t_end_s = filter.state().t_s;
+  sum.faults = filter.faults();
+  sum.final_status = filter.status();
+  return sum;
+}
+
+}  // namespace ldv::est

@@ -1,0 +1,40 @@
+#pragma once
+// Offline runs of the filter over whole files: what `ldv nav` (and `ldv diagnose`, `ldv outage`) call.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "common/formats/kfgins_config.hpp"
+#include "common/formats/nav_types.hpp"
+#include "estimator/filter/nav_filter.hpp"
+
+namespace ldv::est {
+
+// KF-GINS configuration -> filter options: imunoise (arw, vrw, gbstd, abstd, gsstd, asstd, corrtime),
+// init biases/scales and their std, antlever; plus the optional `ldv:` section keys
+//   model, add [list], drop [list], cov_period_s, gate_probability, use_gnss_velocity, zupt (bool),
+//   history_s. Throws InputError (file, key) on a wrong type.
+FilterOptions options_from_kfgins(const KfGinsConfig& cfg);
+
+struct RunCallbacks {
+  std::function<void(const NavFilter&)> on_epoch;                       // after every IMU sample
+  std::function<void(const InnovationRecord&)> on_innovation;           // every measurement decision
+  std::function<void(double fraction_done)> on_progress;                // about every 2 %
+};
+
+struct RunSummary {
+  long imu_samples = 0, gnss_fixes = 0;
+  double t_start_s = 0.0, t_end_s = 0.0;
+  std::string initialisation;  // "given", or the alignment method
+  FaultCounters faults;
+  std::uint32_t final_status = 0;
+};
+
+// Runs over [start_time, end_time] of the inputs (end < 0: to the end). The initial state is taken from
+// cfg.init_pos/init_vel/init_rpy when all three are given (at the first IMU epoch >= start time), else
+// the data are aligned (alignment.hpp). Feeds each fix before the IMU reaches it, so it is applied at its
+// exact epoch. Throws InputError if alignment never succeeds.
+RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
+                          const KfGinsConfig& cfg, NavFilter& filter, const RunCallbacks& callbacks);
+
+}  // namespace ldv::est

@@ -1,0 +1,57 @@
+#pragma once
+// GNSS solutions at the antenna: truth position (lever arm applied, taken at IMU time
+// t_label - time_offset) plus white and Gauss-Markov (coloured) noise per NED axis at the level of
+// the solution type, scheduled outages and a reporting latency.
+#include <string>
+#include <vector>
+
+#include "common/formats/nav_types.hpp"
+#include "sim/motion_profile.hpp"
+#include "sim/truth_sample.hpp"
+
+namespace ldv::sim {
+
+struct GnssErrorLevel {
+  GnssQuality quality = GnssQuality::kFixed;
+  Vec3 white_std_ned_m = Vec3::Zero();
+  Vec3 colored_std_ned_m = Vec3::Zero();  // Gauss-Markov, stationary sigma
+  double colored_tau_s = 60.0;
+  Vec3 vel_std_n_mps = Vec3::Zero();      // white
+  int num_sats = 0;
+  double ratio = 0.0;  // ambiguity validation ratio (RTKLIB)
+  double age_s = 0.0;  // age of differential corrections
+};
+// mode: fixed | float | single. Throws InputError for other names.
+GnssErrorLevel gnss_error_level(const std::string& mode);
+
+struct GnssSchedule {
+  double rate_hz = 1.0;
+  struct Window {
+    double start_s, length_s;
+  };
+  std::vector<Window> outages;  // run time
+  Vec3 lever_arm_b_m = Vec3::Zero();
+  double time_offset_s = 0.0;
+  double latency_mean_s = 0.08, latency_jitter_s = 0.01;  // solution available after its epoch
+  bool with_velocity = false;
+  bool with_noise = true;
+};
+
+struct GnssRun {
+  std::vector<GnssFix> fixes;
+  std::vector<double> latency_s;  // per fix: arrival time = t_s + latency
+};
+
+// Antenna position and velocity at run time t (between IMU epochs: Hermite interpolation of the
+// truth positions; attitude and velocity in closed form from the profile).
+struct AntennaTruth {
+  Geodetic pos;
+  Vec3 vel_n_mps;
+};
+AntennaTruth antenna_truth_at(const MotionProfile& m, const std::vector<TruthSample>& truth, double dt_s, double t_s,
+                              const Vec3& lever_arm_b_m);
+
+GnssRun simulate_gnss(const MotionProfile& m, const std::vector<TruthSample>& truth, double dt_s,
+                      const GnssErrorLevel& level, const GnssSchedule& schedule, uint64_t seed);
+
+}  // namespace ldv::sim

@@ -1,0 +1,262 @@
+#include "sim/simulator.hpp"
+
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "common/io/input_error.hpp"
+#include "common/time/gps_time.hpp"
+#include "sim/effects.hpp"
+#include "sim/gnss_model.hpp"
+#include "sim/random.hpp"
+#include "sim/scenario.hpp"
+#include "sim/truth_integrator.hpp"
+
+namespace ldv::sim {
+namespace {
+
+std::string num(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+void validate(const SimRequest& r) {
+  auto fail = [](const std::string& opt, const std::string& msg) { throw InputError(opt, 0, msg); };
+  if (!(r.duration_s > 0) || !std::isfinite(r.duration_s))
+    fail("--duration", "expected a positive number of seconds, found " + num(r.duration_s));
+  if (!(r.imu_rate_hz >= 1.0 && r.imu_rate_hz <= 4000.0))
+    fail("--imu-rate", "expected an IMU rate in [1, 4000] Hz, found " + num(r.imu_rate_hz));
+  if (!(r.gnss_rate_hz > 0.0 && r.gnss_rate_hz <= 50.0))
+    fail("--gnss-rate", "expected a GNSS rate in (0, 50] Hz, found " + num(r.gnss_rate_hz));
+  if (r.gnss_rate_hz > r.imu_rate_hz) fail("--gnss-rate", "expected a GNSS rate not above the IMU rate");
+  if (r.gps_week < 0) fail("--gps-week", "expected a non-negative GPS week, found " + std::to_string(r.gps_week));
+  if (!(r.start_sow_s >= 0.0 && r.start_sow_s + r.duration_s < kSecondsPerWeek))
+    fail("--start-sow", "expected the run to stay within one GPS week: start " + num(r.start_sow_s) + " s + duration " +
+                            num(r.duration_s) + " s must be below 604800 s");
+  for (const Outage& o : r.outages)
+    if (!(o.start_s >= 0.0) || !(o.length_s > 0.0))
+      fail("--outages", "expected START:LENGTH with START >= 0 and LENGTH > 0 seconds, found " + num(o.start_s) + ":" +
+                            num(o.length_s));
+  if (!(r.gnss_latency_s >= 0.0 && r.gnss_latency_s < 10.0))
+    fail("--gnss-latency", "expected a latency in [0, 10) s, found " + num(r.gnss_latency_s));
+  if (!(r.oscillator_hz >= 1e3 && r.oscillator_hz <= 1e9))
+    fail("--osc-hz", "expected a counter frequency in [1e3, 1e9] Hz, found " + num(r.oscillator_hz));
+  if (!(std::abs(r.oscillator_ppm) <= 1000.0))
+    fail("--osc-ppm", "expected a frequency error within +-1000 ppm, found " + num(r.oscillator_ppm));
+}
+
+// Effects by name (SI); declared ones marked. Rejects an effect given twice.
+struct EffectSet {
+  std::map<std::string, EffectValue> values;
+  std::set<std::string> declared;
+
+  bool has(const std::string& n) const { return values.count(n) > 0; }
+  Vec3 vec3(const std::string& n) const {
+    const auto it = values.find(n);
+    if (it == values.end()) return Vec3::Zero();
+    return Vec3(it->second.si[0], it->second.si[1], it->second.si[2]);
+  }
+  double scalar(const std::string& n) const {
+    const auto it = values.find(n);
+    return it == values.end() ? 0.0 : it->second.si[0];
+  }
+};
+
+EffectSet parse_effects(const SimRequest& r) {
+  EffectSet set;
+  for (const auto& spec : r.effects)
+    for (auto& v : parse_effect(spec, "--effect")) {
+      if (set.has(v.name)) throw InputError("--effect", 0, "effect '" + v.name + "' is given twice");
+      set.values[v.name] = v;
+    }
+  for (const auto& spec : r.declared_effects)
+    for (auto& v : parse_effect(spec, "--declare")) {
+      if (!set.has(v.name)) {
+        set.values[v.name] = v;
+      } else if (!v.defaulted && set.values[v.name].engineering != v.engineering) {
+        throw InputError("--declare", 0, "effect '" + v.name + "' is declared with values different from --effect");
+      }
+      set.declared.insert(v.name);
+    }
+  return set;
+}
+
+Vec3 draw(Rng& rng, const Vec3& std) {
+  return Vec3(std.x() * rng.normal(), std.y() * rng.normal(), std.z() * rng.normal());
+}
+
+// The sensor model of one triad from the grade and the effects with this prefix ("gyro"/"accel").
+TriadSensorModel triad_model(const TriadErrorModel& g, const EffectSet& fx, const std::string& prefix, Rng& turn_on) {
+  TriadSensorModel m;
+  m.bias = draw(turn_on, g.turn_on_bias_std) + fx.vec3(prefix + "_bias");
+  m.scale = draw(turn_on, g.scale_std) + fx.vec3(prefix + "_scale");
+  m.misalignment_rad = fx.vec3(prefix + "_misalignment");
+  m.nonlinear = fx.vec3(prefix + "_nonlinear_scale");
+  m.white_N = g.white_N;
+  m.quantization_Q = g.quantization_Q;
+  m.rate_rw_K = g.rate_rw_K;
+  m.ramp_R = g.ramp_R;
+  m.sinusoid_amplitude = g.sinusoid_amplitude;
+  m.sinusoid_hz = g.sinusoid_hz;
+  if (!g.instability_B.isZero()) m.gauss_markov.push_back({g.instability_B, g.instability_T_s});
+  const auto it = fx.values.find(prefix + "_moving_bias");
+  if (it != fx.values.end()) {
+    const auto& v = it->second.si;  // constant, B, T, K, R (same on every axis)
+    m.bias += Vec3::Constant(v[0]);
+    m.gauss_markov.push_back({Vec3::Constant(v[1]), Vec3::Constant(v[2])});
+    m.rate_rw_K = (m.rate_rw_K.cwiseAbs2() + Vec3::Constant(v[3] * v[3])).cwiseSqrt();  // independent walks add
+    m.ramp_R += Vec3::Constant(v[4]);
+  }
+  return m;
+}
+
+std::vector<double> as_vector(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+
+}  // namespace
+
+SimResult simulate(const SimRequest& req, const std::function<void(double)>& progress) {
+  validate(req);
+  const ImuGrade grade = req.custom_grade ? *req.custom_grade : imu_grade(req.grade);
+  const EffectSet fx = parse_effects(req);
+  const GnssErrorLevel gnss_level = gnss_error_level(req.gnss_mode);
+  const Scenario scenario = load_scenario(req.scenario);
+  const MotionProfile motion = compile_scenario(scenario, req.duration_s);
+
+  SimResult res;
+  res.request = req;
+  res.grade_source = grade.source;
+  res.scenario_name = scenario.name;
+  res.declared_effects.assign(fx.declared.begin(), fx.declared.end());
+  const double dt = 1.0 / req.imu_rate_hz;
+  const size_t n = static_cast<size_t>(std::llround(req.duration_s * req.imu_rate_hz));
+  if (n < 2) throw InputError("--duration", 0, "expected at least two IMU intervals at this rate");
+
+  // Sensor model: grade draws first (so their values do not depend on which effects are present).
+  Rng turn_on(req.seed, "turn_on");
+  ImuSensorModel sensor;
+  sensor.gyro = triad_model(grade.gyro, fx, "gyro", turn_on);
+  sensor.accel = triad_model(grade.accel, fx, "accel", turn_on);
+  sensor.g_sensitivity = fx.vec3("g_sensitivity");
+  sensor.with_noise = req.with_noise;
+
+  // Gravity anomaly per IMU interval: constant, or Gauss-Markov in the n frame.
+  std::vector<Vec3> anomaly;
+  if (fx.has("gravity_anomaly")) {
+    const auto& v = fx.values.at("gravity_anomaly").si;
+    const Vec3 level(v[0], v[1], v[2]);
+    anomaly.assign(n, level);
+    if (v.size() == 4) {
+      Rng rng(req.seed, "gravity_anomaly");
+      const double phi = std::exp(-dt / v[3]), q = std::sqrt(1.0 - phi * phi);
+      Vec3 x = draw(rng, level);
+      for (size_t k = 0; k < n; ++k) {
+        anomaly[k] = x;
+        for (int i = 0; i < 3; ++i) x[i] = phi * x[i] + level[i] * q * rng.normal();
+      }
+      res.injected_effects["gravity_anomaly"] = as_vector(anomaly.front());
+      res.injected_effects["gravity_anomaly.sigma"] = as_vector(level);
+      res.injected_effects["gravity_anomaly.tau_s"] = {v[3]};
+    } else {
+      res.injected_effects["gravity_anomaly"] = as_vector(level);
+    }
+  }
+
+  // Truth and exact increments.
+  TruthOptions topt;
+  topt.t0_sow_s = req.start_sow_s;
+  topt.dt_s = dt;
+  topt.intervals = n;
+  topt.with_squares = sensor.gyro.any_nonlinear() || sensor.accel.any_nonlinear();
+  topt.gravity_anomaly_n = &anomaly;
+  TruthRun run = integrate_truth(motion, topt, [&](double f) {
+    if (progress) progress(0.85 * f);
+  });
+
+  // Sensor errors.
+  ImuErrorSimulator errors(sensor, req.seed);
+  res.imu.resize(n);
+  const size_t per_second = std::max<size_t>(1, static_cast<size_t>(std::llround(req.imu_rate_hz)));
+  static const Vec3 kZero = Vec3::Zero();
+  for (size_t k = 0; k < n; ++k) {
+    const double t_mid = (static_cast<double>(k) + 0.5) * dt;
+    if (k % per_second == 0) {
+      ImuBiasSample b = errors.current_bias(static_cast<double>(k) * dt);
+      b.t_s += req.start_sow_s;
+      res.imu_bias_history.push_back(b);
+    }
+    res.imu[k] = errors.apply(run.increments[k], t_mid, topt.with_squares ? run.omega_sq_integral[k] : kZero,
+                              topt.with_squares ? run.f_sq_integral[k] : kZero);
+    if (progress && k % (n / 10 + 1) == 0) progress(0.85 + 0.1 * k / n);
+  }
+
+  // GNSS.
+  GnssSchedule sch;
+  sch.rate_hz = req.gnss_rate_hz;
+  for (const Outage& o : req.outages) sch.outages.push_back({o.start_s, o.length_s});
+  sch.lever_arm_b_m = fx.vec3("lever_arm");
+  sch.time_offset_s = fx.scalar("time_offset");
+  sch.latency_mean_s = req.gnss_latency_s;
+  sch.with_velocity = req.gnss_velocity;
+  sch.with_noise = req.with_noise;
+  GnssRun gnss = simulate_gnss(motion, run.truth, dt, gnss_level, sch, req.seed);
+  res.gnss = std::move(gnss.fixes);
+  res.gnss_latency_s = std::move(gnss.latency_s);
+  res.truth = std::move(run.truth);
+
+  // True values of the injected effects (SI).
+  auto record_if = [&](const std::string& name, const Vec3& v) {
+    if (fx.has(name) || !v.isZero()) res.injected_effects[name] = as_vector(v);
+  };
+  record_if("gyro_bias", sensor.gyro.bias);
+  record_if("accel_bias", sensor.accel.bias);
+  record_if("gyro_scale", sensor.gyro.scale);
+  record_if("accel_scale", sensor.accel.scale);
+  for (const char* name : {"gyro_misalignment", "accel_misalignment", "g_sensitivity", "gyro_nonlinear_scale",
+                           "accel_nonlinear_scale", "lever_arm", "time_offset", "gyro_moving_bias",
+                           "accel_moving_bias"})
+    if (fx.has(name)) res.injected_effects[name] = fx.values.at(name).si;
+
+  // KF-GINS configuration: initial state from the truth, noise from the grade, declared effects only.
+  KfGinsConfig& c = res.kfgins;
+  c.imu_rate_hz = req.imu_rate_hz;
+  c.start_time_s = req.start_sow_s;
+  c.end_time_s = -1.0;
+  const TruthSample& t0 = res.truth.front();
+  c.init_pos = t0.pos;
+  c.init_vel_n_mps = t0.vel_n_mps;
+  c.init_rpy_rad = t0.rpy_rad;
+  c.init_pos_std_ned_m = res.gnss.empty() ? Vec3::Constant(0.01) : res.gnss.front().pos_std_ned_m;
+  c.init_vel_std_n_mps = Vec3::Constant(0.01);
+  c.init_att_std_rad = Vec3(0.01, 0.01, 0.05) * kDegToRad;
+  auto& nz = c.imu_noise;
+  nz.arw_rad_per_sqrt_s = grade.gyro.white_N;
+  nz.vrw_mps_per_sqrt_s = grade.accel.white_N;
+  nz.gyro_bias_std_rad_s = (grade.gyro.turn_on_bias_std.cwiseAbs2() + grade.gyro.instability_B.cwiseAbs2()).cwiseSqrt();
+  nz.accel_bias_std_mps2 = (grade.accel.turn_on_bias_std.cwiseAbs2() + grade.accel.instability_B.cwiseAbs2()).cwiseSqrt();
+  nz.gyro_scale_std = grade.gyro.scale_std;
+  nz.accel_scale_std = grade.accel.scale_std;
+  nz.corr_time_s = grade.gyro.instability_B.isZero() ? 3600.0 : grade.gyro.instability_T_s.mean();
+  const auto declared = [&](const std::string& n) { return fx.declared.count(n) > 0; };
+  if (declared("gyro_bias")) c.init_gyro_bias_rad_s = fx.vec3("gyro_bias");
+  if (declared("accel_bias")) c.init_accel_bias_mps2 = fx.vec3("accel_bias");
+  if (declared("gyro_scale")) c.init_gyro_scale = fx.vec3("gyro_scale");
+  if (declared("accel_scale")) c.init_accel_scale = fx.vec3("accel_scale");
+  if (declared("lever_arm")) c.antenna_lever_b_m = fx.vec3("lever_arm");
+  YAML::Node ldv;
+  ldv["simulator"]["grade"] = grade.name;
+  ldv["simulator"]["seed"] = req.seed;
+  ldv["simulator"]["scenario"] = scenario.name;
+  ldv["gnss_latency_s"] = req.gnss_latency_s;
+  for (const auto& name : fx.declared) {
+    YAML::Node seq(YAML::NodeType::Sequence);
+    for (double x : fx.values.at(name).si) seq.push_back(x);
+    seq.SetStyle(YAML::EmitterStyle::Flow);
+    ldv["declared_effects_si"][name] = seq;
+  }
+  c.ldv = ldv;
+  if (progress) progress(1.0);
+  return res;
+}
+
+}  // namespace ldv::sim

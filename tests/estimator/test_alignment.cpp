@@ -1,0 +1,104 @@
+// Alignment without truth: levelling for any mounting (upside down), gyrocompassing against its
+// theoretical accuracy, heading from GNSS course over ground for a MEMS IMU.
+#include <gtest/gtest.h>
+
+#include "common/geo/earth_model.hpp"
+#include "estimator/ins/alignment.hpp"
+#include "estimator/run/run_navigation.hpp"
+#include "sim/simulator.hpp"
+#include "sim_run.hpp"
+
+namespace ldv::est {
+namespace {
+
+// The closed-form static sensing: f_b = C_n_b (-g_n), w_b = C_n_b w_ie_n.
+void static_sensing(const Vec3& rpy, double lat, Vec3& f_b, Vec3& w_b) {
+  const Mat3 C_n_b = C_b_n_from_euler(rpy).transpose();
+  f_b = -(C_n_b * earth::gravity_n(lat, 0.0));
+  w_b = C_n_b * earth::omega_ie_n(lat);
+}
+
+TEST(Alignment, LevellingAndGyrocompassingAnyMountingIncludingUpsideDown) {
+  const double lat = 40.0 * kDegToRad;
+  for (const Vec3 rpy_deg : {Vec3(0, 0, 30), Vec3(178, 5, -120), Vec3(-175, -20, 75), Vec3(90, 10, 10), Vec3(3, 60, 200 - 360)}) {
+    const Vec3 rpy = rpy_deg * kDegToRad;
+    Vec3 f, w;
+    static_sensing(rpy, lat, f, w);
+    const Vec3 level = level_from_specific_force(f);
+    EXPECT_NEAR(wrap_pi(level.x() - rpy.x()), 0.0, 1e-9) << rpy_deg.transpose();
+    EXPECT_NEAR(level.y(), rpy.y(), 1e-9) << rpy_deg.transpose();
+    EXPECT_NEAR(wrap_pi(gyrocompass_yaw(level.x(), level.y(), w) - rpy.z()), 0.0, 1e-9) << rpy_deg.transpose();
+  }
+}
+
+sim::SimResult simulate(const std::string& grade, const std::string& scenario, double duration_s, uint64_t seed) {
+  sim::SimRequest req;
+  req.grade = grade;
+  req.seed = seed;
+  req.duration_s = duration_s;
+  req.scenario = scenario;
+  req.gnss_rate_hz = 1.0;
+  return sim::simulate(req);
+}
+
+TEST(Alignment, GyrocompassingTacticalGradeWithinItsTheoreticalAccuracy) {
+  // Given a static tactical-grade IMU for 120 s
+  const auto sim = simulate("hg1700", "static", 125.0, 5);
+  AlignmentOptions ao;
+  FilterOptions fo = options_from_kfgins(sim.kfgins);
+  ao.gyro_bias_std_rad_s = fo.gyro_bias.init_std.maxCoeff();
+  ao.arw_rad_per_sqrt_s = fo.arw_rad_per_sqrt_s.maxCoeff();
+  ao.gyrocompass_max_yaw_std_rad = 10.0 * kDegToRad;
+  ao.gyrocompass_min_s = 120.0;
+  Aligner al(ao);
+  size_t g = 0;
+  for (const auto& inc : sim.imu) {
+    al.add_imu(inc);
+    for (; g < sim.gnss.size() && sim.gnss[g].t_s <= inc.t_s; ++g) al.add_gnss(sim.gnss[g]);
+    if (al.aligned()) break;
+  }
+  ASSERT_TRUE(al.aligned());
+  EXPECT_EQ(al.method(), "levelling + gyrocompassing");
+  // Then the yaw error is within 3 sigma of theory, with the true east gyro bias as the dominant term.
+  const auto& truth = sim.truth.front();
+  const Eigen::Matrix<double, 9, 1> e = test::nav_error(al.state(), truth);
+  const double lat = truth.pos.lat_rad;
+  const double sigma = gyrocompass_yaw_std(lat, ao.gyro_bias_std_rad_s, ao.arw_rad_per_sqrt_s, 120.0);
+  // Closed-form prediction from the injected bias: yaw error = -b_east / (Omega cos(lat)).
+  const std::vector<double>& b = sim.injected_effects.at("gyro_bias");
+  const Vec3 b_n = C_b_n_from_euler(truth.rpy_rad) * Vec3(b[0], b[1], b[2]);
+  const double predicted = b_n.y() / (earth::kOmegaIe_rad_s * std::cos(lat));
+  std::printf("gyrocompass yaw error %.3f deg, predicted from the true bias %.3f deg, theory sigma %.3f deg\n",
+              e(8) * kRadToDeg, predicted * kRadToDeg, sigma * kRadToDeg);
+  EXPECT_LT(std::abs(e(8)), 3.0 * sigma);
+  EXPECT_NEAR(std::abs(e(8)), std::abs(predicted), 3.0 * ao.arw_rad_per_sqrt_s / std::sqrt(120.0) /
+                                                     (earth::kOmegaIe_rad_s * std::cos(lat)) + 0.05 * kDegToRad);
+  // Levelling: the error is the horizontal accelerometer bias over g (3 sigma of the prior).
+  EXPECT_LT(e.segment<2>(6).norm(), 3.0 * fo.accel_bias.init_std.maxCoeff() / 9.8);
+}
+
+TEST(Alignment, MemsHeadingFromGnssCourseThenFilterConverges) {
+  // Given a MEMS IMU that cannot sense Earth rate, no initial state in the configuration
+  const auto sim = simulate("3dm-gx2", "drive", 400.0, 6);
+  KfGinsConfig cfg = sim.kfgins;
+  cfg.init_pos.reset();
+  cfg.init_vel_n_mps.reset();
+  cfg.init_rpy_rad.reset();
+  FilterOptions o = options_from_kfgins(cfg);
+  NavFilter filter(o);
+  double yaw_err_end = 0;
+  RunCallbacks cb;
+  const double t0 = sim.truth.front().t_s, dt = 1.0 / sim.request.imu_rate_hz;
+  cb.on_epoch = [&](const NavFilter& f) {
+    const size_t k = static_cast<size_t>(std::llround((f.state().t_s - t0) / dt));
+    if (k < sim.truth.size()) yaw_err_end = test::nav_error(f.state(), sim.truth[k])(8);
+  };
+  const RunSummary sum = run_navigation(sim.imu, sim.gnss, cfg, filter, cb);
+  std::printf("MEMS alignment: %s at %.1f s, yaw error at the end %.3f deg\n", sum.initialisation.c_str(),
+              sum.t_start_s - t0, yaw_err_end * kRadToDeg);
+  EXPECT_EQ(sum.initialisation, "levelling + GNSS course over ground");
+  EXPECT_LT(std::abs(yaw_err_end), 1.5 * kDegToRad);
+}
+
+}  // namespace
+}  // namespace ldv::est

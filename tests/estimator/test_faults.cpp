@@ -1,0 +1,139 @@
+// Bad input and numerical faults: clear errors or counted skips and status bits, never a crash.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "common/formats/kfgins_config.hpp"
+#include "common/formats/kfgins_files.hpp"
+#include "common/io/input_error.hpp"
+#include "estimator/run/run_navigation.hpp"
+
+namespace ldv::est {
+namespace {
+
+NavState start() {
+  NavState s;
+  s.t_s = 100.0;
+  s.pos = {30.0 * kDegToRad, 114.0 * kDegToRad, 20.0};
+  return s;
+}
+
+ImuIncrement static_increment(double t, double dt) {
+  ImuIncrement inc;
+  inc.t_s = t;
+  inc.dt_s = dt;
+  inc.dvel_b_mps = Vec3(0, 0, -9.7936) * dt;  // roughly static, level
+  return inc;
+}
+
+TEST(Faults, NonFiniteImuAndGnssAreSkippedFlaggedAndCounted) {
+  NavFilter f(FilterOptions{});
+  f.initialize(start(), NavStd{});
+  double t = 100.0;
+  for (int i = 0; i < 10; ++i) f.add_imu(static_increment(t += 0.005, 0.005));
+  ImuIncrement bad = static_increment(t + 0.005, 0.005);
+  bad.dtheta_b_rad.x() = std::nan("");
+  f.add_imu(bad);
+  EXPECT_TRUE(f.status() & kStatusImuRejected);
+  EXPECT_EQ(f.faults().imu_rejected, 1);
+  GnssFix fix;
+  fix.t_s = t + 0.1;
+  fix.pos = start().pos;
+  fix.pos.h_m = std::nan("");
+  f.add_gnss(fix);
+  EXPECT_TRUE(f.status() & kStatusMeasurementRejected);
+  for (int i = 0; i < 10; ++i) f.add_imu(static_increment(t += 0.005, 0.005));
+  EXPECT_TRUE(f.state().v_n_mps.allFinite());
+}
+
+TEST(Faults, NonPositiveDefiniteCovarianceIsResetAndFlagged) {
+  NavFilter f(FilterOptions{});
+  f.initialize(start(), NavStd{});
+  Eigen::MatrixXd P = f.covariance();
+  P(0, 0) = -1.0;
+  P(3, 4) = P(4, 3) = std::nan("");
+  f.set_covariance(P);
+  EXPECT_TRUE(f.status() & kStatusCovarianceReset);
+  EXPECT_TRUE(f.covariance().allFinite());
+  EXPECT_GT(f.covariance().diagonal().minCoeff(), 0.0);
+  double t = 100.0;
+  for (int i = 0; i < 400; ++i) f.add_imu(static_increment(t += 0.005, 0.005));
+  GnssFix fix;
+  fix.t_s = t + 0.002;
+  fix.pos = start().pos;
+  f.add_gnss(fix);
+  f.add_imu(static_increment(t += 0.005, 0.005));
+  EXPECT_TRUE(f.state().v_n_mps.allFinite());
+  EXPECT_EQ(f.faults().covariance_resets, 1);
+}
+
+TEST(Faults, HugeGnssOutlierIsGatedThenResynchronised) {
+  FilterOptions o;
+  o.zupt.enabled = false;
+  NavFilter f(o);
+  f.initialize(start(), NavStd{});
+  double t = 100.0;
+  GnssFix fix;
+  fix.pos = start().pos;
+  fix.pos_std_ned_m = Vec3::Constant(0.02);
+  int rejected = 0;
+  for (int k = 0; k < 20; ++k) {
+    fix.t_s = t + 0.1;
+    fix.pos.lat_rad = start().pos.lat_rad + (k >= 5 ? 50.0 / 6.4e6 : 0.0);  // a 50 m jump from fix 5 on
+    f.add_gnss(fix);
+    for (int i = 0; i < 40; ++i) f.add_imu(static_increment(t += 0.005, 0.005));
+    for (const auto& r : f.take_innovations()) rejected += !r.accepted;
+  }
+  EXPECT_EQ(rejected, o.gate_max_consecutive_rejects);
+  EXPECT_EQ(f.faults().gate_resyncs, 1);
+  EXPECT_TRUE(f.state().v_n_mps.allFinite());
+}
+
+TEST(Faults, UnknownModelOrEffectNamesTheProblem) {
+  FilterOptions o;
+  o.model = "ins16";
+  EXPECT_THROW({ NavFilter f(o); }, std::invalid_argument);
+  o.model = "ins15";
+  o.add = {"gyro_biass"};
+  try {
+    NavFilter f(o);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("gyro_biass"), std::string::npos);
+  }
+}
+
+TEST(Faults, ConfigKeyOfWrongTypeInLdvSectionIsAnInputError) {
+  const auto dir = std::filesystem::temp_directory_path() / "ldv_est_faults";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "imu.txt") << "1 0 0 0 0 0 -0.049\n";
+  std::ofstream(dir / "gnss.txt") << "1 30 114 20 0.1 0.1 0.1\n";
+  std::ofstream(dir / "c.yaml") << "imupath: " << (dir / "imu.txt").string() << "\ngnsspath: " << (dir / "gnss.txt").string()
+                                << "\nimunoise: {arw: [1,1,1], vrw: [1,1,1], gbstd: [1,1,1], abstd: [1,1,1], corrtime: 1}\n"
+                                << "ldv:\n  cov_period_s: fast\n";
+  const KfGinsConfig cfg = load_kfgins_config((dir / "c.yaml").string());
+  try {
+    options_from_kfgins(cfg);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cov_period_s"), std::string::npos);
+    EXPECT_GT(e.line(), 0);
+  }
+}
+
+TEST(Faults, NoAlignmentPossibleIsAnInputErrorNotACrash) {
+  // Two seconds of static data, no GNSS motion: neither gyrocompassing nor course over ground.
+  std::vector<ImuIncrement> imu;
+  for (int i = 1; i <= 400; ++i) imu.push_back(static_increment(100.0 + i * 0.005, 0.005));
+  std::vector<GnssFix> gnss(1);
+  gnss[0].t_s = 100.5;
+  gnss[0].pos = start().pos;
+  KfGinsConfig cfg;
+  cfg.start_time_s = 0;
+  NavFilter f(FilterOptions{});
+  EXPECT_THROW(run_navigation(imu, gnss, cfg, f, {}), InputError);
+}
+
+}  // namespace
+}  // namespace ldv::est

@@ -1,0 +1,83 @@
+#pragma once
+// The noise-identification study of issue 5, shared by the default (short) and the Monte Carlo
+// (full) tests: simulate, analyse, count how often each term is accurate and covered.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "tests/toolbox_allan/sensor_sim.hpp"
+#include "toolbox/allan/analysis.hpp"
+
+namespace ldv::allan::test {
+
+constexpr double kDeg = M_PI / 180.0;
+constexpr double kHour = 3600.0;
+
+// Gyro truths in the paper's units converted to SI (rad/s based), chosen so that each term
+// dominates over part of the 3 h record (a term that never shows cannot be identified by anyone).
+inline SensorTruth hg1700_gyro() {  // tactical grade
+  SensorTruth t;
+  t.n = 0.15 * kDeg / 60.0;              // 0.15 deg/sqrt(h)
+  t.gm_sigma = 5.0 * kDeg / kHour;       // 5 deg/h, Allan peak 3.1 deg/h at 95 s
+  t.gm_t_s = 50.0;
+  t.k = 10.0 * kDeg / (kHour * 60.0);    // 10 deg/h/sqrt(h)
+  return t;
+}
+inline SensorTruth gx2_gyro() {  // MEMS grade (3DM-GX2 like)
+  SensorTruth t;
+  t.n = 3.5 * kDeg / 60.0;               // 3.5 deg/sqrt(h)
+  t.gm_sigma = 100.0 * kDeg / kHour;     // 100 deg/h, Allan peak 62 deg/h at 38 s
+  t.gm_t_s = 20.0;
+  t.k = 300.0 * kDeg / (kHour * 60.0);   // 300 deg/h/sqrt(h)
+  return t;
+}
+
+struct StudyResult {
+  int seeds = 0, n_ok = 0, b_ok = 0, k_ok = 0, n_cover = 0, b_cover = 0, k_cover = 0, absent_ok = 0;
+};
+
+inline StudyResult study(const SensorTruth& truth, double hours, double rate_hz, int seeds) {
+  StudyResult s;
+  AnalysisOptions opt;
+  opt.fit_options.gauss_markov = true;
+  const double dt = 1.0 / rate_hz;
+  for (int seed = 1; seed <= seeds; ++seed) {
+    auto y = simulate_rate(truth, dt, static_cast<long>(hours * kHour * rate_hz), 1000u + seed);
+    const PhaseSeries ps = phase_from_rates(std::move(y), dt, "gyro_x", "rad/s");
+    const auto r = analyze({ps}, opt).front();
+    EXPECT_TRUE(r.fit.has_value()) << r.fit_error;
+    const NoiseFit& f = *r.fit;
+    const TermEstimate &n = f[ModelTerm::kN], &b = f[ModelTerm::kGaussMarkov], &k = f[ModelTerm::kK];
+    const TermEstimate &q = f[ModelTerm::kQ], &rr = f[ModelTerm::kR];
+    ++s.seeds;
+    s.n_ok += std::fabs(n.value / truth.n - 1) < 0.03;
+    s.b_ok += std::fabs(b.value / truth.gm_sigma - 1) < 0.10;
+    s.k_ok += std::fabs(k.value / truth.k - 1) < 0.30;
+    s.n_cover += n.lo <= truth.n && truth.n <= n.hi;
+    s.b_cover += b.lo <= truth.gm_sigma && truth.gm_sigma <= b.hi;
+    s.k_cover += k.lo <= truth.k && truth.k <= k.hi;
+    s.absent_ok += !q.resolved && !rr.resolved && std::isfinite(q.value + q.sigma + rr.value + rr.sigma);
+    std::printf("seed %2d: N %.4f (%+.1f%%) B %.4f (%+.1f%%, T %.0f s) K %.4f (%+.1f%%)  Q %s R %s\n", seed,
+                n.value / kDeg * 60, 100 * (n.value / truth.n - 1), b.value / kDeg * kHour,
+                100 * (b.value / truth.gm_sigma - 1), b.shape, k.value / kDeg * kHour * 60, 100 * (k.value / truth.k - 1),
+                q.resolved ? "resolved" : "absent", rr.resolved ? "resolved" : "absent");
+  }
+  std::printf("N within 3%%: %d/%d, B within 10%%: %d/%d, K within 30%%: %d/%d; truth in 95%% interval: N %d B %d K %d; "
+              "absent Q,R: %d\n",
+              s.n_ok, s.seeds, s.b_ok, s.seeds, s.k_ok, s.seeds, s.n_cover, s.b_cover, s.k_cover, s.absent_ok);
+  return s;
+}
+
+inline void expect_study(const StudyResult& s, double fraction) {
+  const double need = fraction * s.seeds;
+  EXPECT_GE(s.n_ok, need);
+  EXPECT_GE(s.b_ok, need);
+  EXPECT_GE(s.k_ok, need);
+  EXPECT_GE(s.n_cover, need);
+  EXPECT_GE(s.b_cover, need);
+  EXPECT_GE(s.k_cover, need);
+  EXPECT_EQ(s.absent_ok, s.seeds);
+}
+
+}  // namespace ldv::allan::test

@@ -1,0 +1,238 @@
+#include "toolbox/allan/allan_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "toolbox/allan/sensor_units.hpp"
+
+namespace ldv::allan {
+namespace {
+
+const ModelTerm kPaperTerms[5] = {ModelTerm::kQ, ModelTerm::kN, ModelTerm::kB, ModelTerm::kK, ModelTerm::kR};
+const Term kUnitTerms[5] = {Term::kQ, Term::kN, Term::kB, Term::kK, Term::kR};
+
+std::string num(double v) {
+  if (!std::isfinite(v)) return "null";  // never NaN in JSON (and never expected)
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  return buf;
+}
+
+std::string quoted(const std::string& s) {
+  std::string o = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') o += '\\';
+    o += c;
+  }
+  return o + "\"";
+}
+
+template <typename F>
+std::string array_of(const std::vector<StabilityPoint>& pts, F get) {
+  std::string o = "[";
+  for (size_t i = 0; i < pts.size(); ++i) o += (i ? "," : "") + num(get(pts[i]));
+  return o + "]";
+}
+
+}  // namespace
+
+BiasProcess bias_process(const NoiseFit& fit) {
+  const TermEstimate& gm = fit[ModelTerm::kGaussMarkov];
+  if (gm.in_model) return {gm.value, gm.shape};
+  const double floor_adev = std::sqrt(2.0 * std::log(2.0) / M_PI) * fit[ModelTerm::kB].value;
+  return {floor_adev / 0.6174, fit.b_tau_s / 1.893};
+}
+
+void print_tables(std::FILE* out, const std::vector<ChannelResult>& results) {
+  for (const ChannelResult& r : results) {
+    const Quantity q = quantity_of_si_unit(r.unit);
+    std::fprintf(out, "\n%s [%s]: %ld samples at %.6g s (%.2f h), mean %.6g %s removed\n", r.name.c_str(), r.unit.c_str(),
+                 r.samples, r.tau0_s, r.samples * r.tau0_s / 3600.0, r.mean_rate, r.unit.c_str());
+    if (!r.fit) {
+      std::fprintf(out, "  no noise fit: %s\n", r.fit_error.c_str());
+      continue;
+    }
+    const NoiseFit& f = *r.fit;
+    std::fprintf(out, "  %-4s %-15s %12s %12s %25s  %-9s %12s\n", "term", "unit", "value", "sigma", "95% interval",
+                 "resolved", "slope line");
+    for (int i = 0; i < 5; ++i) {
+      const ModelTerm mt = kPaperTerms[i];
+      const EngineeringUnit u = paper_unit(q, kUnitTerms[i]);
+      const TermEstimate* t = &f[mt];
+      std::string extra;
+      if (mt == ModelTerm::kB && f[ModelTerm::kGaussMarkov].in_model) {
+        t = &f[ModelTerm::kGaussMarkov];
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "  (Gauss-Markov, T = %.4g s)", t->shape);
+        extra = buf;
+      } else if (mt == ModelTerm::kB) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "  (flat at tau = %.4g s)", f.b_tau_s);
+        extra = buf;
+      }
+      if (!t->in_model) {
+        std::fprintf(out, "  %-4s %-15s %12s\n", term_name(kUnitTerms[i]), u.name, "not modelled");
+        continue;
+      }
+      char interval[64];
+      std::snprintf(interval, sizeof interval, "[%.4g, %.4g]", t->lo * u.from_si, t->hi * u.from_si);
+      std::fprintf(out, "  %-4s %-15s %12.5g %12.3g %25s  %-9s %12.5g%s\n", term_name(kUnitTerms[i]), u.name,
+                   t->value * u.from_si, t->sigma * u.from_si, interval, t->resolved ? "yes" : "no",
+                   f.slope_lines[i].value * u.from_si, extra.c_str());
+    }
+    const TermEstimate& sine = f[ModelTerm::kSinusoid];
+    if (sine.in_model) {
+      std::fprintf(out, "  sine amplitude %.5g %s at %.5g Hz (%s)\n", sine.value, r.unit.c_str(), sine.shape,
+                   sine.resolved ? "resolved" : "not resolved");
+    }
+    std::fprintf(out, "  misfit per decade (chi2/point ~ 1 when the model fits):\n");
+    for (const DecadeMisfit& m : f.misfit) {
+      std::fprintf(out, "    tau %8.3g..%-8.3g s: %3d points, chi2/point %8.3g, data/model %6.3f", m.tau_lo_s, m.tau_hi_s,
+                   m.points, m.chi2_per_point, std::exp(m.log_ratio));
+      if (!m.closing_term.empty()) {
+        std::fprintf(out, "  -> add %s: chi2/point %.3g", m.closing_term.c_str(), m.chi2_per_point_with_term);
+      }
+      std::fprintf(out, "\n");
+    }
+  }
+}
+
+void write_json(const std::string& path, const std::string& input, const std::vector<ChannelResult>& results,
+                const AnalysisOptions& opt) {
+  std::ostringstream o;
+  o << "{\n  \"tool\": \"ldv allan\",\n  \"schema_version\": 1,\n  \"input\": " << quoted(input)
+    << ",\n  \"confidence\": " << num(opt.confidence) << ",\n  \"interval_confidence\": "
+    << num(opt.fit_options.interval_confidence) << ",\n  \"channels\": [";
+  for (size_t c = 0; c < results.size(); ++c) {
+    const ChannelResult& r = results[c];
+    o << (c ? "," : "") << "\n    {\n      \"name\": " << quoted(r.name) << ",\n      \"unit\": " << quoted(r.unit)
+      << ",\n      \"tau0_s\": " << num(r.tau0_s) << ",\n      \"samples\": " << r.samples
+      << ",\n      \"mean\": " << num(r.mean_rate);
+    o << ",\n      \"taus_s\": " << array_of(r.oadev, [](const StabilityPoint& p) { return p.point.tau_s; });
+    o << ",\n      \"oadev\": " << array_of(r.oadev, [](const StabilityPoint& p) { return p.point.dev; });
+    o << ",\n      \"oadev_lo\": " << array_of(r.oadev, [](const StabilityPoint& p) { return p.interval.lo; });
+    o << ",\n      \"oadev_hi\": " << array_of(r.oadev, [](const StabilityPoint& p) { return p.interval.hi; });
+    o << ",\n      \"oadev_n\": " << array_of(r.oadev, [](const StabilityPoint& p) { return double(p.point.n_terms); });
+    o << ",\n      \"edf\": " << array_of(r.oadev, [](const StabilityPoint& p) { return p.edf; });
+    o << ",\n      \"alpha\": " << array_of(r.oadev, [](const StabilityPoint& p) { return double(p.alpha); });
+    if (r.fit) {
+      const NoiseFit& f = *r.fit;
+      const Quantity q = quantity_of_si_unit(r.unit);
+      const bool gm = f[ModelTerm::kGaussMarkov].in_model;
+      for (int i = 0; i < 5; ++i) {
+        const ModelTerm mt = kPaperTerms[i];
+        const TermEstimate& t = (mt == ModelTerm::kB && gm) ? f[ModelTerm::kGaussMarkov] : f[mt];
+        const std::string n = term_name(kUnitTerms[i]);
+        o << ",\n      \"" << n << "\": " << num(t.value) << ", \"" << n << "_sigma\": " << num(t.sigma) << ", \"" << n
+          << "_lo\": " << num(t.lo) << ", \"" << n << "_hi\": " << num(t.hi) << ", \"" << n
+          << "_resolved\": " << (t.resolved ? "true" : "false") << ", \"" << n
+          << "_modelled\": " << (t.in_model ? "true" : "false");
+      }
+      o << ",\n      \"B_tau_s\": " << num(f.b_tau_s) << ", \"B_model\": " << quoted(gm ? "gauss_markov" : "flat")
+        << ", \"B_T_s\": " << num(gm ? f[ModelTerm::kGaussMarkov].shape : 0.0)
+        << ", \"B_T_s_sigma\": " << num(gm ? f[ModelTerm::kGaussMarkov].shape_sigma : 0.0);
+      const TermEstimate& sine = f[ModelTerm::kSinusoid];
+      if (sine.in_model) {
+        o << ",\n      \"sine_amplitude\": " << num(sine.value) << ", \"sine_amplitude_sigma\": " << num(sine.sigma)
+          << ", \"sine_hz\": " << num(sine.shape) << ", \"sine_resolved\": " << (sine.resolved ? "true" : "false");
+      }
+      o << ",\n      \"units\": {";
+      for (int i = 0; i < 5; ++i) o << (i ? ", " : "") << "\"" << term_name(kUnitTerms[i]) << "\": " << quoted(si_term_unit(r.unit, kUnitTerms[i]));
+      o << "}";
+      o << ",\n      \"paper_units\": {";
+      for (int i = 0; i < 5; ++i) {
+        const EngineeringUnit u = paper_unit(q, kUnitTerms[i]);
+        const ModelTerm mt = kPaperTerms[i];
+        const TermEstimate& t = (mt == ModelTerm::kB && gm) ? f[ModelTerm::kGaussMarkov] : f[mt];
+        o << (i ? ", " : "") << "\"" << term_name(kUnitTerms[i]) << "\": {\"value\": " << num(t.value * u.from_si)
+          << ", \"sigma\": " << num(t.sigma * u.from_si) << ", \"unit\": " << quoted(u.name) << "}";
+      }
+      o << "}";
+      o << ",\n      \"slope_lines\": {";
+      for (int i = 0; i < 5; ++i) {
+        o << (i ? ", " : "") << "\"" << term_name(kUnitTerms[i]) << "\": {\"value\": " << num(f.slope_lines[i].value)
+          << ", \"tau_s\": " << num(f.slope_lines[i].tau_s) << "}";
+      }
+      o << "}";
+      o << ",\n      \"fit\": {\"chi2\": " << num(f.chi2) << ", \"points\": " << f.points
+        << ", \"covariance_inflation\": " << num(f.covariance_inflation) << "}";
+      o << ",\n      \"misfit\": [";
+      for (size_t i = 0; i < f.misfit.size(); ++i) {
+        const DecadeMisfit& m = f.misfit[i];
+        o << (i ? "," : "") << "\n        {\"tau_lo_s\": " << num(m.tau_lo_s) << ", \"tau_hi_s\": " << num(m.tau_hi_s)
+          << ", \"points\": " << m.points << ", \"chi2_per_point\": " << num(m.chi2_per_point)
+          << ", \"data_over_model\": " << num(std::exp(m.log_ratio)) << ", \"closing_term\": " << quoted(m.closing_term)
+          << ", \"chi2_per_point_with_term\": " << num(m.chi2_per_point_with_term) << "}";
+      }
+      o << "]";
+    } else {
+      o << ",\n      \"fit_error\": " << quoted(r.fit_error);
+    }
+    if (r.extra_kind) {
+      const char* k = deviation_name(*r.extra_kind);
+      o << ",\n      \"deviation\": {\"kind\": " << quoted(k)
+        << ", \"taus_s\": " << array_of(r.extra, [](const StabilityPoint& p) { return p.point.tau_s; })
+        << ", \"dev\": " << array_of(r.extra, [](const StabilityPoint& p) { return p.point.dev; })
+        << ", \"lo\": " << array_of(r.extra, [](const StabilityPoint& p) { return p.interval.lo; })
+        << ", \"hi\": " << array_of(r.extra, [](const StabilityPoint& p) { return p.interval.hi; })
+        << ", \"n\": " << array_of(r.extra, [](const StabilityPoint& p) { return double(p.point.n_terms); }) << "}";
+    }
+    o << "\n    }";
+  }
+  o << "\n  ]\n}\n";
+  std::ofstream f(path);
+  if (!f) throw std::runtime_error("cannot write " + path);
+  f << o.str();
+  if (!f) throw std::runtime_error("error writing " + path);
+}
+
+std::string kfgins_noise_yaml(const std::vector<ChannelResult>& results) {
+  std::vector<const ChannelResult*> gyro, accel;
+  for (const auto& r : results) {
+    if (!r.fit) continue;
+    if (r.unit == "rad/s") gyro.push_back(&r);
+    if (r.unit == "m/s^2") accel.push_back(&r);
+  }
+  if (gyro.empty() && accel.empty()) return "";
+  const double deg = M_PI / 180.0;
+  std::ostringstream o;
+  auto list = [&](const std::vector<const ChannelResult*>& ch, auto value) {
+    o << "[";
+    for (size_t i = 0; i < 3; ++i) {
+      // KF-GINS wants three axes: repeat the last channel when fewer were analysed.
+      const ChannelResult* r = ch[std::min(i, ch.size() - 1)];
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%.6g", value(*r->fit));
+      o << (i ? ", " : "") << buf;
+    }
+    o << "]";
+  };
+  std::vector<double> taus;
+  o << "# ldv allan: noise for ldv nav (KF-GINS imunoise keys, engineering units)\nimunoise:\n";
+  if (!gyro.empty()) {
+    o << "  arw: ";
+    list(gyro, [&](const NoiseFit& f) { return f[ModelTerm::kN].value * 60.0 / deg; });
+    o << "    # [deg/sqrt(h)]\n  gbstd: ";
+    list(gyro, [&](const NoiseFit& f) { return bias_process(f).sigma * 3600.0 / deg; });
+    o << "    # [deg/h]\n";
+    for (auto* r : gyro) taus.push_back(bias_process(*r->fit).time_constant_s);
+  }
+  if (!accel.empty()) {
+    o << "  vrw: ";
+    list(accel, [&](const NoiseFit& f) { return f[ModelTerm::kN].value * 60.0; });
+    o << "    # [m/s/sqrt(h)]\n  abstd: ";
+    list(accel, [&](const NoiseFit& f) { return bias_process(f).sigma * 1e5; });
+    o << "    # [mGal]\n";
+    for (auto* r : accel) taus.push_back(bias_process(*r->fit).time_constant_s);
+  }
+  std::nth_element(taus.begin(), taus.begin() + taus.size() / 2, taus.end());
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6g", taus[taus.size() / 2] / 3600.0);
+  o << "  corrtime: " << buf << "    # [h] median over the channels (KF-GINS has one)\n";
+  return o.str();
+}
+
+}  // namespace ldv::allan

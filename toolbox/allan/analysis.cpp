@@ -1,0 +1,97 @@
+#include "toolbox/allan/analysis.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <exception>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+
+#include "toolbox/allan/edf.hpp"
+
+namespace ldv::allan {
+
+std::vector<long> analysis_factors(const AnalysisOptions& opt, long n_phase, double tau0_s, Deviation dev) {
+  const long dev_max = max_averaging_factor(dev, n_phase);
+  if (!opt.taus_s.empty()) {
+    std::vector<long> ms;
+    for (double tau : opt.taus_s) {
+      const long m = std::lround(tau / tau0_s);
+      if (m < 1) throw std::invalid_argument("tau " + std::to_string(tau) + " s is shorter than the sample interval " + std::to_string(tau0_s) + " s");
+      if (m > dev_max) {
+        throw std::invalid_argument(std::string(deviation_name(dev)) + " at tau " + std::to_string(tau) +
+                                    " s: the data is too short (" + std::to_string(n_phase - 1) + " samples allow tau <= " +
+                                    std::to_string(dev_max * tau0_s) + " s)");
+      }
+      ms.push_back(m);
+    }
+    return ms;
+  }
+  long m_max = opt.max_factor > 0 ? std::min(opt.max_factor, dev_max) : std::min(default_max_factor(n_phase), dev_max);
+  if (m_max < 1) m_max = std::min<long>(1, dev_max);
+  return averaging_factors(opt.spacing, m_max, opt.per_decade);
+}
+
+namespace {
+
+ChannelResult analyze_channel(const PhaseSeries& s, const AnalysisOptions& opt) {
+  ChannelResult r;
+  r.name = s.name;
+  r.unit = s.unit;
+  r.tau0_s = s.tau0_s;
+  r.samples = static_cast<long>(s.x.size()) - 1;
+  r.mean_rate = s.mean_rate;
+  const long n_phase = static_cast<long>(s.x.size());
+  r.oadev = stability(s, Deviation::kOadev, analysis_factors(opt, n_phase, s.tau0_s, Deviation::kOadev), opt.confidence);
+  if (opt.extra) {
+    r.extra_kind = opt.extra;
+    r.extra = stability(s, *opt.extra, analysis_factors(opt, n_phase, s.tau0_s, *opt.extra), opt.confidence);
+  }
+  if (opt.fit) {
+    try {
+      // Weights from the EDF: a noise type misidentified on a short averaged series (B1 ratio) can
+      // claim white-PM-like degrees of freedom at long tau and pull the fit; never weight a point
+      // above what white FM noise (angle/velocity random walk) would give it.
+      std::vector<StabilityPoint> weighted = r.oadev;
+      for (auto& p : weighted) p.edf = std::min(p.edf, greenhall_edf(Deviation::kOadev, 0, p.point.m, n_phase));
+      r.fit = fit_noise_model(weighted, opt.fit_options);
+    } catch (const std::invalid_argument& e) {
+      r.fit_error = e.what();
+    }
+  }
+  return r;
+}
+
+}  // namespace
+
+std::vector<ChannelResult> analyze(const std::vector<PhaseSeries>& channels, const AnalysisOptions& opt,
+                                   const Progress& progress) {
+  std::vector<ChannelResult> results(channels.size());
+  std::vector<std::exception_ptr> errors(channels.size());
+  std::atomic<size_t> next{0};
+  std::mutex progress_mutex;
+  auto worker = [&] {
+    for (size_t i; (i = next++) < channels.size();) {
+      try {
+        results[i] = analyze_channel(channels[i], opt);
+        if (progress) {
+          std::lock_guard<std::mutex> lock(progress_mutex);
+          progress("analysed " + channels[i].name);
+        }
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+    }
+  };
+  const int hw = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int n_threads = std::min<int>(opt.threads > 0 ? opt.threads : hw, static_cast<int>(channels.size()));
+  std::vector<std::thread> pool;
+  for (int t = 1; t < n_threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+  for (auto& e : errors) if (e) std::rethrow_exception(e);
+  return results;
+}
+
+}  // namespace ldv::allan

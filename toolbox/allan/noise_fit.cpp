@@ -1,0 +1,349 @@
+#include "toolbox/allan/noise_fit.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "toolbox/allan/chi_square.hpp"
+
+namespace ldv::allan {
+namespace {
+
+struct Data {
+  std::vector<double> tau, avar, edf;
+};
+
+struct Basis {
+  std::vector<ModelTerm> terms;
+  std::vector<double> shapes;  // per term (GM T, sine f0)
+};
+
+struct LinearFit {
+  std::vector<double> c;  // per basis term
+  double chi2 = std::numeric_limits<double>::infinity();
+  std::vector<double> weights;  // final weights
+};
+
+double model_at(const Basis& b, const std::vector<double>& c, double tau) {
+  double m = 0.0;
+  for (size_t k = 0; k < b.terms.size(); ++k) m += c[k] * term_avar(b.terms[k], tau, b.shapes[k]);
+  return m;
+}
+
+// Weighted least squares restricted to `active` (bit mask); empty result when singular.
+bool solve_subset(const Eigen::MatrixXd& A, const Eigen::VectorXd& y, const Eigen::VectorXd& w, unsigned active,
+                  Eigen::VectorXd& c) {
+  const int p = static_cast<int>(A.cols());
+  std::vector<int> idx;
+  for (int k = 0; k < p; ++k) if (active & (1u << k)) idx.push_back(k);
+  c = Eigen::VectorXd::Zero(p);
+  if (idx.empty()) return true;
+  Eigen::MatrixXd As(A.rows(), idx.size());
+  for (size_t j = 0; j < idx.size(); ++j) As.col(j) = A.col(idx[j]);
+  // Column scaling: the basis functions span many orders of magnitude in tau.
+  Eigen::VectorXd scale(idx.size());
+  for (size_t j = 0; j < idx.size(); ++j) {
+    scale(j) = std::sqrt((As.col(j).array().square() * w.array()).sum());
+    if (!(scale(j) > 0)) return false;
+    As.col(j) /= scale(j);
+  }
+  const Eigen::MatrixXd N = As.transpose() * w.asDiagonal() * As;
+  Eigen::LDLT<Eigen::MatrixXd> ldlt(N);
+  if (ldlt.info() != Eigen::Success || ldlt.rcond() < 1e-14) return false;
+  const Eigen::VectorXd cs = ldlt.solve(As.transpose() * (w.asDiagonal() * y));
+  for (size_t j = 0; j < idx.size(); ++j) c(idx[j]) = cs(j) / scale(j);
+  return true;
+}
+
+// Non-negative weighted least squares by enumerating the passive sets (at most 2^6 for our
+// handful of terms): the optimum is the best subset solution that is non-negative.
+LinearFit nnls(const Basis& b, const Data& d, const Eigen::VectorXd& w) {
+  const int n = static_cast<int>(d.tau.size()), p = static_cast<int>(b.terms.size());
+  Eigen::MatrixXd A(n, p);
+  Eigen::VectorXd y(n);
+  for (int i = 0; i < n; ++i) {
+    y(i) = d.avar[i];
+    for (int k = 0; k < p; ++k) A(i, k) = term_avar(b.terms[k], d.tau[i], b.shapes[k]);
+  }
+  LinearFit best;
+  best.c.assign(p, 0.0);
+  for (unsigned mask = 0; mask < (1u << p); ++mask) {
+    Eigen::VectorXd c;
+    if (!solve_subset(A, y, w, mask, c)) continue;
+    if ((c.array() < 0).any()) continue;
+    const double chi2 = ((A * c - y).array().square() * w.array()).sum();
+    if (chi2 < best.chi2) {
+      best.chi2 = chi2;
+      best.c.assign(c.data(), c.data() + p);
+    }
+  }
+  return best;
+}
+
+// Iteratively re-weighted: var(avar_i) = 2 model_i^2 / edf_i.
+LinearFit irls(const Basis& b, const Data& d) {
+  const int n = static_cast<int>(d.tau.size());
+  Eigen::VectorXd w(n);
+  for (int i = 0; i < n; ++i) w(i) = d.edf[i] / (2.0 * d.avar[i] * d.avar[i]);
+  LinearFit fit;
+  for (int it = 0; it < 8; ++it) {
+    fit = nnls(b, d, w);
+    for (int i = 0; i < n; ++i) {
+      // Floor the model at a tenth of the data so a momentarily absent term cannot blow a weight up.
+      const double m = std::max(model_at(b, fit.c, d.tau[i]), 0.1 * d.avar[i]);
+      w(i) = d.edf[i] / (2.0 * m * m);
+    }
+  }
+  fit.chi2 = 0.0;
+  for (int i = 0; i < n; ++i) fit.chi2 += w(i) * std::pow(d.avar[i] - model_at(b, fit.c, d.tau[i]), 2);
+  fit.weights.assign(w.data(), w.data() + n);
+  return fit;
+}
+
+// Best fit over a log grid of the shape parameter of `t` (GM time constant or sine frequency),
+// refined by golden-section search in log(shape).
+LinearFit fit_with_shape(Basis b, int shaped, const Data& d, double lo, double hi) {
+  auto chi2_at = [&](double log_s) {
+    b.shapes[shaped] = std::exp(log_s);
+    return irls(b, d).chi2;
+  };
+  const int grid = 16;
+  double best_ls = std::log(lo), best_chi2 = std::numeric_limits<double>::infinity();
+  const double step = (std::log(hi) - std::log(lo)) / (grid - 1);
+  for (int g = 0; g < grid; ++g) {
+    const double ls = std::log(lo) + g * step, c2 = chi2_at(ls);
+    if (c2 < best_chi2) best_chi2 = c2, best_ls = ls;
+  }
+  double a = best_ls - step, z = best_ls + step;
+  const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
+  double x1 = z - phi * (z - a), x2 = a + phi * (z - a), f1 = chi2_at(x1), f2 = chi2_at(x2);
+  for (int it = 0; it < 20; ++it) {
+    if (f1 < f2) z = x2, x2 = x1, f2 = f1, x1 = z - phi * (z - a), f1 = chi2_at(x1);
+    else a = x1, x1 = x2, f1 = f2, x2 = a + phi * (z - a), f2 = chi2_at(x2);
+  }
+  b.shapes[shaped] = std::exp(f1 < f2 ? x1 : x2);
+  LinearFit f = irls(b, d);
+  if (f.chi2 > best_chi2) {  // the grid point was better (multi-modal chi2)
+    b.shapes[shaped] = std::exp(best_ls);
+    f = irls(b, d);
+  }
+  f.c.push_back(b.shapes[shaped]);  // the shape rides along at the end
+  return f;
+}
+
+struct Model {
+  Basis basis;
+  LinearFit fit;
+};
+
+Model fit_model(std::vector<ModelTerm> terms, const Data& d) {
+  Model m;
+  m.basis.terms = terms;
+  m.basis.shapes.assign(terms.size(), 0.0);
+  const double tmin = d.tau.front(), tmax = d.tau.back();
+  int shaped = -1;
+  for (size_t k = 0; k < terms.size(); ++k) {
+    if (terms[k] == ModelTerm::kGaussMarkov || terms[k] == ModelTerm::kSinusoid) shaped = static_cast<int>(k);
+  }
+  if (shaped < 0) {
+    m.fit = irls(m.basis, d);
+    return m;
+  }
+  // GM: the hump sits at 1.89 T, so T from tau_min/2 to tau_max/2 covers every visible hump.
+  // Sinusoid: the first peak of its Allan deviation is at tau = 0.371 / f0.
+  const bool gm = terms[shaped] == ModelTerm::kGaussMarkov;
+  const double lo = gm ? 0.5 * tmin : 0.371 / tmax, hi = gm ? 0.5 * tmax : 0.371 / tmin;
+  m.fit = fit_with_shape(m.basis, shaped, d, lo, hi);
+  m.basis.shapes[shaped] = m.fit.c.back();
+  m.fit.c.pop_back();
+  return m;
+}
+
+std::vector<ModelTerm> terms_of(const FitOptions& o) {
+  std::vector<ModelTerm> t;
+  if (o.q) t.push_back(ModelTerm::kQ);
+  if (o.n) t.push_back(ModelTerm::kN);
+  if (o.b && !o.gauss_markov) t.push_back(ModelTerm::kB);
+  if (o.k) t.push_back(ModelTerm::kK);
+  if (o.r) t.push_back(ModelTerm::kR);
+  if (o.gauss_markov) t.push_back(ModelTerm::kGaussMarkov);
+  if (o.sinusoid && !o.gauss_markov) t.push_back(ModelTerm::kSinusoid);  // one shaped term at a time
+  return t;
+}
+
+// Covariance of the coefficients of the terms in `idx` (weighted LS normal matrix inverse).
+// A shaped term (GM, sinusoid) with a non-zero coefficient adds its shape parameter as a last
+// column (Gauss-Newton linearisation, central difference in log(shape)), so the uncertainty of T
+// spreads into the coefficients it trades off against.
+Eigen::MatrixXd covariance(const Basis& b, const std::vector<int>& idx, const Data& d, const std::vector<double>& w,
+                           const std::vector<double>& c) {
+  const int n = static_cast<int>(d.tau.size());
+  int shaped = -1;
+  for (int j : idx) {
+    if ((b.terms[j] == ModelTerm::kGaussMarkov || b.terms[j] == ModelTerm::kSinusoid) && c[j] > 0) shaped = j;
+  }
+  const int q = static_cast<int>(idx.size()) + (shaped >= 0 ? 1 : 0);
+  Eigen::MatrixXd A(n, q);
+  for (int i = 0; i < n; ++i) {
+    for (size_t j = 0; j < idx.size(); ++j) A(i, j) = term_avar(b.terms[idx[j]], d.tau[i], b.shapes[idx[j]]);
+    if (shaped >= 0) {
+      const double s = b.shapes[shaped], h = 1e-4;
+      A(i, q - 1) = c[shaped] * (term_avar(b.terms[shaped], d.tau[i], s * (1 + h)) -
+                                 term_avar(b.terms[shaped], d.tau[i], s * (1 - h))) / (2 * h);
+    }
+  }
+  Eigen::VectorXd scale(q);
+  for (int j = 0; j < q; ++j) {
+    scale(j) = A.col(j).norm();
+    if (scale(j) > 0) A.col(j) /= scale(j);
+  }
+  const Eigen::VectorXd wv = Eigen::Map<const Eigen::VectorXd>(w.data(), n);
+  const Eigen::MatrixXd N = A.transpose() * wv.asDiagonal() * A;
+  Eigen::MatrixXd C = N.completeOrthogonalDecomposition().pseudoInverse();
+  return scale.cwiseInverse().asDiagonal() * C * scale.cwiseInverse().asDiagonal();
+}
+
+double decade_chi2(const Model& m, const Data& d, double lo, double hi, int* count) {
+  double s = 0.0;
+  int c = 0;
+  for (size_t i = 0; i < d.tau.size(); ++i) {
+    if (d.tau[i] < lo || d.tau[i] >= hi) continue;
+    const double mod = std::max(model_at(m.basis, m.fit.c, d.tau[i]), 1e-300);
+    s += d.edf[i] / 2.0 * std::pow(d.avar[i] / mod - 1.0, 2);
+    ++c;
+  }
+  if (count) *count = c;
+  return s;
+}
+
+}  // namespace
+
+double NoiseFit::model_avar(double tau) const {
+  double m = 0.0;
+  for (int k = 0; k < kModelTermCount; ++k) {
+    const TermEstimate& t = terms[k];
+    if (t.in_model && t.value > 0) m += t.value * t.value * term_avar(static_cast<ModelTerm>(k), tau, t.shape);
+  }
+  return m;
+}
+
+NoiseFit fit_noise_model(const std::vector<StabilityPoint>& pts, const FitOptions& opt) {
+  Data d;
+  for (const auto& p : pts) {
+    if (p.edf > 0 && p.point.dev > 0) {
+      d.tau.push_back(p.point.tau_s);
+      d.avar.push_back(p.point.dev * p.point.dev);
+      d.edf.push_back(p.edf);
+    }
+  }
+  if (d.tau.size() < 3) throw std::invalid_argument("noise fit needs at least 3 deviation points with degrees of freedom");
+  NoiseFit out;
+  out.points = static_cast<int>(d.tau.size());
+  const std::vector<ModelTerm> terms = terms_of(opt);
+  const Model model = fit_model(terms, d);
+  out.chi2 = model.fit.chi2;
+
+  // Overlapping estimates at neighbouring taus share most of their data, so the weighted LS
+  // covariance (which assumes independent points) is optimistic. We count about one independent
+  // point per octave of tau: the covariance is inflated by the number of points per octave.
+  const double octaves = std::max(1.0, std::log2(d.tau.back() / d.tau.front()));
+  out.covariance_inflation = std::max(1.0, d.tau.size() / octaves);
+
+  const double z = normal_quantile(0.5 + 0.5 * opt.interval_confidence);
+  std::vector<int> active;
+  for (size_t k = 0; k < terms.size(); ++k) if (model.fit.c[k] > 0) active.push_back(static_cast<int>(k));
+  const Eigen::MatrixXd cov_active = covariance(model.basis, active, d, model.fit.weights, model.fit.c) * out.covariance_inflation;
+  for (size_t k = 0; k < terms.size(); ++k) {
+    TermEstimate& t = out[terms[k]];
+    t.in_model = true;
+    t.shape = model.basis.shapes[k];
+    double var_c;
+    const auto it = std::find(active.begin(), active.end(), static_cast<int>(k));
+    if (it != active.end()) {
+      const int j = static_cast<int>(it - active.begin());
+      var_c = cov_active(j, j);
+    } else {  // at the bound: its uncertainty as if it were free, next to the active terms
+      std::vector<int> with = active;
+      with.push_back(static_cast<int>(k));
+      var_c = covariance(model.basis, with, d, model.fit.weights, model.fit.c)(with.size() - 1, with.size() - 1) *
+              out.covariance_inflation;
+    }
+    const double c = model.fit.c[k], sc = std::sqrt(std::max(var_c, 0.0));
+    t.value = std::sqrt(c);
+    // The coefficient enters squared: intervals are taken on c and mapped through the square root,
+    // which stays meaningful at c = 0 (where the delta method would divide by zero).
+    t.sigma = 0.5 * (std::sqrt(c + sc) - std::sqrt(std::max(0.0, c - sc)));
+    t.lo = std::sqrt(std::max(0.0, c - z * sc));
+    t.hi = std::sqrt(c + z * sc);
+    bool dominant = false;
+    for (double tau : d.tau) {
+      const double part = c * term_avar(terms[k], tau, t.shape);
+      if (part >= 0.5 * model_at(model.basis, model.fit.c, tau)) dominant = true;
+    }
+    t.resolved = c > 2.0 * sc && dominant;
+    if ((terms[k] == ModelTerm::kGaussMarkov || terms[k] == ModelTerm::kSinusoid) && c > 0 &&
+        cov_active.rows() > static_cast<long>(active.size())) {
+      // The last row/column is ln(shape): sigma(T) = T sigma(ln T).
+      t.shape_sigma = t.shape * std::sqrt(std::max(0.0, cov_active(active.size(), active.size())));
+    }
+  }
+
+  // B_tau_s: where the measured deviation is flattest, i.e. its minimum.
+  const size_t imin = std::min_element(d.avar.begin(), d.avar.end()) - d.avar.begin();
+  out.b_tau_s = d.tau[imin];
+
+  // Slope lines: the line of each slope that touches the curve from below (IEEE Std 952 reads N at
+  // tau = 1 s on the -1/2 line, K at 3 s on the +1/2 line, ...: the same numbers).
+  const ModelTerm line_terms[5] = {ModelTerm::kQ, ModelTerm::kN, ModelTerm::kB, ModelTerm::kK, ModelTerm::kR};
+  for (int l = 0; l < 5; ++l) {
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < d.tau.size(); ++i) {
+      const double c = d.avar[i] / term_avar(line_terms[l], d.tau[i]);
+      if (c < best) best = c, out.slope_lines[l].tau_s = d.tau[i];
+    }
+    out.slope_lines[l].value = std::sqrt(best);
+  }
+
+  // Misfit per decade, and the excluded term that would close it.
+  std::vector<ModelTerm> candidates;
+  for (ModelTerm t : {ModelTerm::kQ, ModelTerm::kN, ModelTerm::kB, ModelTerm::kK, ModelTerm::kR,
+                      ModelTerm::kGaussMarkov}) {
+    if (std::find(terms.begin(), terms.end(), t) == terms.end()) candidates.push_back(t);
+  }
+  std::vector<Model> extended;
+  for (ModelTerm t : candidates) {
+    std::vector<ModelTerm> with = terms;
+    if (t == ModelTerm::kGaussMarkov) with.erase(std::remove(with.begin(), with.end(), ModelTerm::kSinusoid), with.end());
+    with.push_back(t);
+    extended.push_back(fit_model(with, d));
+  }
+  const double first_decade = std::floor(std::log10(d.tau.front()));
+  for (double e = first_decade; std::pow(10.0, e) <= d.tau.back(); e += 1.0) {
+    DecadeMisfit dm;
+    dm.tau_lo_s = std::pow(10.0, e);
+    dm.tau_hi_s = std::pow(10.0, e + 1.0);
+    const double chi2 = decade_chi2(model, d, dm.tau_lo_s, dm.tau_hi_s, &dm.points);
+    if (dm.points == 0) continue;
+    dm.chi2_per_point = chi2 / dm.points;
+    for (size_t i = 0; i < d.tau.size(); ++i) {
+      if (d.tau[i] >= dm.tau_lo_s && d.tau[i] < dm.tau_hi_s) {
+        dm.log_ratio += std::log(d.avar[i] / std::max(model_at(model.basis, model.fit.c, d.tau[i]), 1e-300)) / dm.points;
+      }
+    }
+    dm.chi2_per_point_with_term = dm.chi2_per_point;
+    for (size_t c = 0; c < candidates.size(); ++c) {
+      const double after = decade_chi2(extended[c], d, dm.tau_lo_s, dm.tau_hi_s, nullptr) / dm.points;
+      // A term "closes" the misfit when it at least halves it (a clear, not a marginal, gain).
+      if (after < 0.5 * dm.chi2_per_point && after < dm.chi2_per_point_with_term) {
+        dm.closing_term = model_term_name(candidates[c]);
+        dm.chi2_per_point_with_term = after;
+      }
+    }
+    out.misfit.push_back(dm);
+  }
+  return out;
+}
+
+}  // namespace ldv::allan

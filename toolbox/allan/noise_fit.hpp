@@ -1,0 +1,69 @@
+#pragma once
+// Identification of the inertial-sensor noise terms from an overlapping Allan deviation:
+//  - weighted non-negative least squares of the Allan variance model (noise_model.hpp), weights
+//    from the variance of each Allan variance estimate, 2 sigma^4 / edf, evaluated at the model
+//    (iteratively re-weighted, so low points are not over-weighted);
+//  - parameter covariance, a 95 % interval and a resolved / not-resolved flag per term;
+//  - the paper's slope lines (-1, -1/2, 0, +1/2, +1) as a second opinion;
+//  - a misfit per decade of tau, and which excluded term would close it.
+// Everything in SI units of the rate (unit = rad/s, m/s^2, ...): Q unit*s, N unit*s^0.5,
+// B unit, K unit/s^0.5, R unit/s, Gauss-Markov sigma unit and T s, sinusoid amplitude unit.
+#include <array>
+#include <string>
+#include <vector>
+
+#include "toolbox/allan/confidence.hpp"
+#include "toolbox/allan/noise_model.hpp"
+
+namespace ldv::allan {
+
+struct FitOptions {
+  bool q = true, n = true, b = true, k = true, r = true;
+  bool gauss_markov = false;  // model the bias as Gauss-Markov (sigma, T) in place of the flat B
+  bool sinusoid = false;      // add a sinusoid (amplitude, frequency)
+  double interval_confidence = 0.95;
+};
+
+struct TermEstimate {
+  bool in_model = false;
+  double value = 0.0;      // the coefficient (>= 0)
+  double sigma = 0.0;      // 1-sigma uncertainty of the coefficient
+  double lo = 0.0, hi = 0.0;  // interval at FitOptions::interval_confidence
+  bool resolved = false;   // significant (> 2 sigma in variance) and dominant somewhere in tau
+  double shape = 0.0;      // GM time constant T [s] / sinusoid frequency [Hz]
+  double shape_sigma = 0.0;  // its 1-sigma uncertainty
+};
+
+struct SlopeLine {
+  double value = 0.0;   // coefficient of the tangent line: an upper bound on the term
+  double tau_s = 0.0;   // where the line touches the curve
+};
+
+struct DecadeMisfit {
+  double tau_lo_s = 0.0, tau_hi_s = 0.0;
+  int points = 0;
+  double chi2_per_point = 0.0;   // mean squared normalized residual (about 1 when the model fits)
+  double log_ratio = 0.0;        // mean ln(data/model) of the Allan variance: > 0 model too low
+  std::string closing_term;      // excluded term whose addition lowers this decade's misfit most ("" none)
+  double chi2_per_point_with_term = 0.0;
+};
+
+struct NoiseFit {
+  std::array<TermEstimate, kModelTermCount> terms;  // indexed by ModelTerm
+  double b_tau_s = 0.0;           // tau of the minimum (flat part) of the measured deviation
+  double chi2 = 0.0;              // weighted residual sum of squares
+  int points = 0;
+  double covariance_inflation = 1.0;  // for correlated overlapping estimates (see noise_fit.cpp)
+  std::array<SlopeLine, 5> slope_lines;  // Q N B K R
+  std::vector<DecadeMisfit> misfit;
+
+  const TermEstimate& operator[](ModelTerm t) const { return terms[static_cast<int>(t)]; }
+  TermEstimate& operator[](ModelTerm t) { return terms[static_cast<int>(t)]; }
+  double model_avar(double tau_s) const;  // fitted total Allan variance
+};
+
+// pts: an overlapping (or any Allan-type) deviation with EDFs. Points without EDF are skipped.
+// Throws std::invalid_argument with fewer than 3 usable points.
+NoiseFit fit_noise_model(const std::vector<StabilityPoint>& pts, const FitOptions& opt = {});
+
+}  // namespace ldv::allan
