@@ -1,0 +1,84 @@
+// `ldv export LOG --out DIR`: an LCM log (lcm-logger) -> the interchange files: imu.txt and gnss.txt
+// (KF-GINS, from IMU and GNSS_SOLUTION), nav.nav (from NAV) and tspi.nav (from TSPI), so every
+// offline tool (ldv nav, diagnose, compare, report) reads what the vehicle recorded.
+#include <filesystem>
+#include <lcm/lcm-cpp.hpp>
+
+#include <ldv_lcm/nav_state_t.hpp>
+#include <ldv_lcm/tspi_v1_t.hpp>
+
+#include "common/bus/message_conversions.hpp"
+#include "common/formats/kfgins_files.hpp"
+#include "common/io/input_error.hpp"
+#include "tools/ldv/command_registry.hpp"
+
+namespace ldv::cli {
+namespace {
+namespace fs = std::filesystem;
+
+template <class Msg>
+NavRecord nav_record_of(const Msg& m) {
+  NavRecord r;
+  r.week = m.gps_week;
+  r.sow_s = m.gps_sow_s;
+  r.pos = {m.lat_deg * kDegToRad, m.lon_deg * kDegToRad, m.height_m};
+  r.vel_n_mps = Vec3(m.vel_ned_mps[0], m.vel_ned_mps[1], m.vel_ned_mps[2]);
+  r.rpy_rad = Vec3(m.rpy_deg[0], m.rpy_deg[1], m.rpy_deg[2]) * kDegToRad;
+  return r;
+}
+
+void add_export_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("export", "LCM log -> imu.txt, gnss.txt (KF-GINS), nav.nav, tspi.nav");
+  static std::vector<std::string> logs;
+  static std::string out_dir;
+  cmd->add_option("logs", logs, "LCM log file(s) (e.g. the vehicle bus log and the TSPI log)")->required();
+  cmd->add_option("--out", out_dir, "output directory")->required();
+  cmd->callback([] {
+    fs::create_directories(out_dir);
+    std::vector<ImuIncrement> imu;
+    std::vector<GnssFix> gnss;
+    std::unique_ptr<NavWriter> nav, tspi;
+    long malformed = 0, nav_n = 0, tspi_n = 0;
+    for (const std::string& path : logs) {
+      lcm::LogFile log(path, "r");
+      if (!log.good()) throw InputError(path, 0, "cannot open LCM log file");
+      while (const lcm::LogEvent* ev = log.readNextEvent()) {
+        if (ev->channel == "IMU") {
+          ldv_lcm::imu_sample_t m;
+          if (m.decode(ev->data, 0, ev->datalen) < 0 || !is_valid(m)) { ++malformed; continue; }
+          imu.push_back(imu_from_message(m));
+        } else if (ev->channel == "GNSS_SOLUTION") {
+          ldv_lcm::gnss_solution_t m;
+          if (m.decode(ev->data, 0, ev->datalen) < 0 || !is_valid(m)) { ++malformed; continue; }
+          gnss.push_back(gnss_from_message(m));
+        } else if (ev->channel == "NAV") {
+          ldv_lcm::nav_state_t m;
+          if (m.decode(ev->data, 0, ev->datalen) < 0) { ++malformed; continue; }
+          if (!nav) nav = std::make_unique<NavWriter>((fs::path(out_dir) / "nav.nav").string());
+          nav->write(nav_record_of(m));
+          ++nav_n;
+        } else if (ev->channel == "TSPI") {
+          ldv_lcm::tspi_v1_t m;
+          if (m.decode(ev->data, 0, ev->datalen) < 0) { ++malformed; continue; }
+          if (!tspi) tspi = std::make_unique<NavWriter>((fs::path(out_dir) / "tspi.nav").string());
+          tspi->write(nav_record_of(m));
+          ++tspi_n;
+        }
+      }
+    }
+    // The log is in arrival order; the KF-GINS files are in time order with one row per epoch.
+    auto by_time = [](const auto& a, const auto& b) { return a.t_s < b.t_s; };
+    std::stable_sort(imu.begin(), imu.end(), by_time);
+    std::stable_sort(gnss.begin(), gnss.end(), by_time);
+    gnss.erase(std::unique(gnss.begin(), gnss.end(), [](const GnssFix& a, const GnssFix& b) { return a.t_s == b.t_s; }), gnss.end());
+    if (!imu.empty()) write_kfgins_imu((fs::path(out_dir) / "imu.txt").string(), imu);
+    if (!gnss.empty()) write_kfgins_gnss((fs::path(out_dir) / "gnss.txt").string(), gnss, true);
+    std::fprintf(stderr, "ldv export: %zu IMU, %zu GNSS, %ld NAV, %ld TSPI records (%ld malformed skipped) -> %s\n",
+                 imu.size(), gnss.size(), nav_n, tspi_n, malformed, out_dir.c_str());
+  });
+}
+
+const RegisterCommand kRegister{"export", &add_export_command};
+
+}  // namespace
+}  // namespace ldv::cli
