@@ -1,0 +1,80 @@
+#include "toolbox/assess/outage_plan.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/geo/earth_model.hpp"
+
+namespace ldv::assess {
+namespace {
+constexpr double kDifferenceSpan_s = 1.0;
+
+// Index of the fix nearest to time t (fixes sorted by time).
+size_t nearest(const std::vector<GnssFix>& g, double t) {
+  auto it = std::lower_bound(g.begin(), g.end(), t, [](const GnssFix& f, double x) { return f.t_s < x; });
+  if (it == g.end()) return g.size() - 1;
+  if (it != g.begin() && t - (it - 1)->t_s < it->t_s - t) --it;
+  return static_cast<size_t>(it - g.begin());
+}
+}  // namespace
+
+std::vector<TrackMotion> track_motion(const std::vector<GnssFix>& g) {
+  std::vector<TrackMotion> m;
+  m.reserve(g.size());
+  for (size_t k = 0; k < g.size(); ++k) {
+    const size_t j = nearest(g, g[k].t_s - kDifferenceSpan_s), l = nearest(g, g[k].t_s + kDifferenceSpan_s);
+    const double dt1 = g[k].t_s - g[j].t_s, dt2 = g[l].t_s - g[k].t_s;
+    // A gap in the fixes (outage in the data) makes the differences meaningless: no motion known.
+    if (j == k || l == k || dt1 > 2.0 * kDifferenceSpan_s || dt2 > 2.0 * kDifferenceSpan_s) {
+      m.push_back({g[k].t_s, 0.0, 0.0});
+      continue;
+    }
+    Vec3 v1 = earth::ned_between(g[j].pos, g[k].pos) / dt1, v2 = earth::ned_between(g[k].pos, g[l].pos) / dt2;
+    v1.z() = v2.z() = 0.0;
+    const Vec3 a = (v2 - v1) / (0.5 * (dt1 + dt2));
+    m.push_back({g[k].t_s, 0.5 * (v1 + v2).norm(), a.norm()});
+  }
+  return m;
+}
+
+std::vector<OutageWindow> plan_outages(const std::vector<GnssFix>& gnss, const std::vector<double>& lengths_s,
+                                       double t_end_s, const OutagePlanOptions& o) {
+  std::vector<OutageWindow> plan;
+  if (gnss.size() < 3) return plan;
+  const std::vector<TrackMotion> motion = track_motion(gnss);
+  for (const double length : lengths_s) {
+    double earliest = gnss.front().t_s + o.converge_s;
+    for (;;) {
+      // First manoeuvre at or after `earliest`, else the first moving epoch, within max_wait_s.
+      const TrackMotion* start = nullptr;
+      bool manoeuvre = false;
+      for (const TrackMotion& m : motion) {
+        if (m.t_s < earliest || m.speed_mps < o.min_speed_mps) continue;
+        if (m.t_s > earliest + o.max_wait_s) break;
+        if (m.accel_mps2 >= o.manoeuvre_accel_mps2) {
+          start = &m;
+          manoeuvre = true;
+          break;
+        }
+        if (!start) start = &m;
+      }
+      if (!start) {
+        // Nothing moving within the wait: look further on.
+        auto next = std::find_if(motion.begin(), motion.end(),
+                                 [&](const TrackMotion& m) { return m.t_s > earliest + o.max_wait_s && m.speed_mps >= o.min_speed_mps; });
+        if (next == motion.end()) break;
+        earliest = next->t_s;
+        continue;
+      }
+      if (start->t_s + length > t_end_s) break;
+      plan.push_back({length, start->t_s, manoeuvre});
+      earliest = start->t_s + length + o.recovery_s;
+    }
+  }
+  std::sort(plan.begin(), plan.end(), [](const OutageWindow& a, const OutageWindow& b) {
+    return a.start_s != b.start_s ? a.start_s < b.start_s : a.length_s < b.length_s;
+  });
+  return plan;
+}
+
+}  // namespace ldv::assess

@@ -1,0 +1,213 @@
+#include "toolbox/assess/outage_run.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <mutex>
+#include <set>
+#include <thread>
+
+#include "common/io/input_error.hpp"
+#include "estimator/run/run_navigation.hpp"
+#include "toolbox/assess/filter_checkpoint.hpp"
+#include "toolbox/assess/solution_comparison.hpp"
+
+namespace ldv::assess {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr double kEpochTolerance_s = 1e-9;
+
+NavSample sample_of(const est::NavState& s) { return {s.t_s, s.pos, s.v_n_mps, s.q_b_n}; }
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Follows one outage segment epoch by epoch and measures its drift against the reference.
+class DriftTracker {
+ public:
+  DriftTracker(const OutageWindow& w, const NavSeries& reference, const OutageRunOptions& o)
+      : ref_(reference), o_(o) {
+    r_.window = w;
+  }
+
+  void observe(const est::NavFilter& f) {
+    last_ = f.state();
+    if (last_.t_s + kEpochTolerance_s < next_eval_s_) return;
+    last_std_ = f.nav_std();
+    evaluate();
+    next_eval_s_ = last_.t_s + o_.eval_period_s;
+  }
+
+  OutageResult finish(const est::NavFilter& f) {
+    last_ = f.state();
+    last_std_ = f.nav_std();
+    if (const auto d = evaluate()) {
+      r_.end_drift = *d;
+      r_.end_std = last_std_;
+    }
+    r_.t_end_s = last_.t_s;
+    return std::move(r_);
+  }
+
+ private:
+  std::optional<NavDifference> evaluate() {
+    const auto ref = ref_.at(last_.t_s);
+    if (!ref) return std::nullopt;
+    const NavDifference d = nav_difference(sample_of(last_), *ref);
+    const auto c = table_components(d);
+    for (int i = 0; i < kComponents; ++i) r_.max_abs[i] = std::max(r_.max_abs[i], std::abs(c[i]));
+    r_.max_horizontal_m = std::max(r_.max_horizontal_m, d.pos_ned_m.head<2>().norm());
+    const double since = last_.t_s - r_.window.start_s;
+    if (since + kEpochTolerance_s >= next_curve_s_) {
+      r_.curve.push_back({since, d.pos_ned_m, last_std_.pos_ned_m, c[8]});
+      next_curve_s_ = since + o_.curve_period_s;
+    }
+    return d;
+  }
+
+  const NavSeries& ref_;
+  const OutageRunOptions& o_;
+  OutageResult r_;
+  est::NavState last_;
+  est::NavStd last_std_;
+  double next_eval_s_ = -1e300, next_curve_s_ = 0.0;
+};
+
+// An outage from its checkpoint: the IMU after the checkpoint epoch, no GNSS.
+OutageResult run_from_checkpoint(const FilterCheckpoint& cp, const OutageWindow& w, const std::vector<ImuIncrement>& imu,
+                                 const NavSeries& reference, const OutageRunOptions& o) {
+  std::unique_ptr<est::NavFilter> f = restore_filter(cp);
+  DriftTracker tracker(w, reference, o);
+  const double t_stop = w.start_s + w.length_s + kEpochTolerance_s;
+  auto it = std::upper_bound(imu.begin(), imu.end(), cp.state.t_s + kEpochTolerance_s,
+                             [](double t, const ImuIncrement& s) { return t < s.t_s; });
+  for (; it != imu.end() && it->t_s <= t_stop; ++it) {
+    f->add_imu(*it);
+    tracker.observe(*f);
+  }
+  return tracker.finish(*f);
+}
+
+// The reference for the checkpoint: the whole run again with this outage's fixes removed.
+OutageResult rerun_with_outage(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
+                               const KfGinsConfig& cfg, const est::FilterOptions& fo, const OutageWindow& w,
+                               const NavSeries& reference, const OutageRunOptions& o) {
+  std::vector<GnssFix> cut;
+  const double t_stop = w.start_s + w.length_s;
+  for (const GnssFix& g : gnss)
+    if (g.t_s <= w.start_s || g.t_s > t_stop) cut.push_back(g);
+  KfGinsConfig c = cfg;
+  c.end_time_s = t_stop + kEpochTolerance_s;
+  est::NavFilter f(fo);
+  DriftTracker tracker(w, reference, o);
+  est::RunCallbacks cb;
+  cb.on_epoch = [&](const est::NavFilter& nf) {
+    if (nf.state().t_s > w.start_s) tracker.observe(nf);
+  };
+  est::run_navigation(imu, cut, c, f, cb);
+  return tracker.finish(f);
+}
+
+// Runs job(i) for i in [0, n) on `threads` threads, largest first as given by `order`.
+template <typename Job>
+void run_parallel(const std::vector<size_t>& order, int threads, Job job) {
+  std::atomic<size_t> next{0};
+  auto worker = [&] {
+    for (size_t k; (k = next++) < order.size();) job(order[k]);
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+}
+
+}  // namespace
+
+OutageRun run_outages(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss, const KfGinsConfig& cfg,
+                      const est::FilterOptions& fo, const NavSeries& truth, const OutageRunOptions& o) {
+  auto say = [&](const std::string& s) {
+    if (o.progress) o.progress(s);
+  };
+  if (imu.empty() || gnss.empty()) throw std::invalid_argument("outage: no IMU or no GNSS data");
+  OutageRun run;
+  run.reference = truth.empty() ? "uncut solution" : "truth";
+  run.threads = o.threads > 0 ? o.threads : std::max(1u, std::thread::hardware_concurrency());
+  const double t_data_end = cfg.end_time_s > 0 ? std::min(cfg.end_time_s, imu.back().t_s) : imu.back().t_s;
+  const std::vector<OutageWindow> plan = plan_outages(gnss, o.lengths_s, t_data_end, o.plan);
+  if (plan.empty()) throw std::invalid_argument("outage: the run is too short or never moves for these outage lengths");
+  {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "outage: %zu outages planned, drift against the %s", plan.size(), run.reference.c_str());
+    say(buf);
+  }
+
+  // 1. The uncut run: its solution (reference without truth) and a checkpoint at each outage start.
+  std::vector<double> starts;
+  for (const OutageWindow& w : plan) starts.push_back(w.start_s);
+  starts.erase(std::unique(starts.begin(), starts.end()), starts.end());
+  std::vector<FilterCheckpoint> checkpoints;
+  std::vector<NavSample> uncut;
+  uncut.reserve(imu.size());
+  const auto t0 = Clock::now();
+  est::NavFilter uncut_filter(fo);
+  est::RunCallbacks cb;
+  cb.on_epoch = [&](const est::NavFilter& f) {
+    uncut.push_back(sample_of(f.state()));
+    // The fix at the start epoch has been applied once the IMU has reached it.
+    while (checkpoints.size() < starts.size() && f.state().t_s + kEpochTolerance_s >= starts[checkpoints.size()])
+      checkpoints.push_back(capture_checkpoint(f));
+  };
+  int last_percent = -10;
+  cb.on_progress = [&](double done) {
+    if (done * 100 >= last_percent + 10) {
+      last_percent = static_cast<int>(done * 100) / 10 * 10;
+      say("outage: uncut run " + std::to_string(last_percent) + " %");
+    }
+  };
+  const est::RunSummary summary = est::run_navigation(imu, gnss, cfg, uncut_filter, cb);
+  run.imu_samples = summary.imu_samples;
+  run.uncut_run_s = seconds_since(t0);
+  std::set<std::string> lost;
+  for (const auto& c : checkpoints) lost.insert(c.not_carried.begin(), c.not_carried.end());
+  run.not_carried.assign(lost.begin(), lost.end());
+  const NavSeries uncut_series(std::move(uncut));
+  const NavSeries& reference = truth.empty() ? uncut_series : truth;
+
+  // 2. The outages, longest first so the cores stay busy to the end.
+  std::vector<size_t> order(plan.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return plan[a].length_s > plan[b].length_s; });
+  std::vector<OutageResult> results(plan.size());
+  std::atomic<int> done{0};
+  std::mutex say_mutex;
+  const auto t1 = Clock::now();
+  run_parallel(order, run.threads, [&](size_t i) {
+    const OutageWindow& w = plan[i];
+    const size_t c = static_cast<size_t>(std::lower_bound(starts.begin(), starts.end(), w.start_s) - starts.begin());
+    if (o.exact_rerun)
+      results[i] = rerun_with_outage(imu, gnss, cfg, fo, w, reference, o);
+    else if (c < checkpoints.size())
+      results[i] = run_from_checkpoint(checkpoints[c], w, imu, reference, o);
+    else
+      results[i].window = w;  // the filter never reached the start (cannot happen with a sane plan)
+    if (!truth.empty()) {
+      const auto u = uncut_series.at(results[i].t_end_s), t = truth.at(results[i].t_end_s);
+      if (u && t) results[i].uncut_error = nav_difference(*u, *t);
+    }
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "outage: %d/%zu done (%.0f s from %.1f: %.2f m horizontal)", ++done, plan.size(),
+                  w.length_s, w.start_s, results[i].end_drift.pos_ned_m.head<2>().norm());
+    std::lock_guard<std::mutex> lock(say_mutex);
+    say(buf);
+  });
+  run.outages_run_s = seconds_since(t1);
+  std::stable_sort(results.begin(), results.end(), [](const OutageResult& a, const OutageResult& b) {
+    return a.window.length_s != b.window.length_s ? a.window.length_s < b.window.length_s : a.window.start_s < b.window.start_s;
+  });
+  run.outages = std::move(results);
+  return run;
+}
+
+}  // namespace ldv::assess

@@ -1,0 +1,84 @@
+#include "toolbox/assess/solution_comparison.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "toolbox/assess/json_text.hpp"
+#include "toolbox/assess/nav_difference.hpp"
+
+namespace ldv::assess {
+
+const std::array<const char*, kComponents> kComponentNames = {"east", "north", "down", "v_north", "v_east",
+                                                              "v_down", "roll", "pitch", "yaw"};
+const std::array<const char*, kComponents> kComponentUnits = {"m", "m", "m", "m/s", "m/s", "m/s", "deg", "deg", "deg"};
+
+// The paper lists position as E N D but velocity as N E D.
+std::array<double, kComponents> table_components(const NavDifference& d) {
+  return {d.pos_ned_m.y(),   d.pos_ned_m.x(),   d.pos_ned_m.z(),   d.vel_ned_mps.x(),         d.vel_ned_mps.y(),
+          d.vel_ned_mps.z(), d.rpy_rad.x() * kRadToDeg, d.rpy_rad.y() * kRadToDeg, d.rpy_rad.z() * kRadToDeg};
+}
+
+ComparisonResult compare_solutions(const NavSeries& a, const NavSeries& b, const ComparisonOptions& o) {
+  ComparisonResult r;
+  if (a.empty() || b.empty()) throw std::invalid_argument("compare: an empty solution");
+  const double t_settled = a.t_begin_s() + o.settle_s;
+  std::array<double, kComponents> sum{}, sum2{};
+  for (const NavSample& s : a.samples()) {
+    if (s.t_s < t_settled) continue;
+    const auto ref = b.at(s.t_s, o.max_gap_s);
+    if (!ref) {
+      ++r.unmatched;
+      continue;
+    }
+    const auto c = table_components(nav_difference(s, *ref));
+    for (int i = 0; i < kComponents; ++i) {
+      sum[i] += c[i];
+      sum2[i] += c[i] * c[i];
+      r.stats[i].max_abs = std::max(r.stats[i].max_abs, std::abs(c[i]));
+    }
+    if (r.epochs == 0) r.t_first_s = s.t_s;
+    r.t_last_s = s.t_s;
+    ++r.epochs;
+  }
+  if (r.epochs == 0) throw std::invalid_argument("compare: the two solutions share no epoch after the settling time");
+  for (int i = 0; i < kComponents; ++i) {
+    ComponentStats& st = r.stats[i];
+    st.mean = sum[i] / r.epochs;
+    st.rms = std::sqrt(sum2[i] / r.epochs);
+    st.std = std::sqrt(std::max(0.0, st.rms * st.rms - st.mean * st.mean));
+  }
+  return r;
+}
+
+void print_comparison(std::FILE* out, const ComparisonResult& r, const std::string& a_name, const std::string& b_name) {
+  std::fprintf(out, "%s minus %s: %ld epochs from %.3f to %.3f s (%ld not covered by the second)\n", a_name.c_str(),
+               b_name.c_str(), r.epochs, r.t_first_s, r.t_last_s, r.unmatched);
+  std::fprintf(out, "%-10s %-5s %12s %12s %12s %12s\n", "component", "unit", "mean", "std", "RMS", "max |d|");
+  for (int i = 0; i < kComponents; ++i) {
+    const ComponentStats& s = r.stats[i];
+    std::fprintf(out, "%-10s %-5s %12.4f %12.4f %12.4f %12.4f\n", kComponentNames[i], kComponentUnits[i], s.mean, s.std,
+                 s.rms, s.max_abs);
+  }
+}
+
+std::string comparison_json(const ComparisonResult& r, const std::string& a_name, const std::string& b_name) {
+  JsonObject o;
+  o.add("tool", "ldv compare").add("a", a_name).add("b", b_name).add("epochs", r.epochs).add("unmatched", r.unmatched);
+  o.add("t_first_s", r.t_first_s).add("t_last_s", r.t_last_s);
+  JsonObject comps;
+  for (int i = 0; i < kComponents; ++i) {
+    const ComponentStats& s = r.stats[i];
+    comps.add_raw(kComponentNames[i], JsonObject()
+                                          .add("unit", kComponentUnits[i])
+                                          .add("mean", s.mean)
+                                          .add("std", s.std)
+                                          .add("rms", s.rms)
+                                          .add("max_abs", s.max_abs)
+                                          .str());
+  }
+  o.add_raw("components", comps.str());
+  return o.str();
+}
+
+}  // namespace ldv::assess

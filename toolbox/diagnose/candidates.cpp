@@ -1,0 +1,85 @@
+#include "toolbox/diagnose/candidates.hpp"
+
+#include <algorithm>
+
+#include "estimator/effects/registry.hpp"
+
+namespace ldv::diag {
+namespace {
+
+struct Screenable {
+  const char* name;
+  double plausible_si;  // per state
+};
+
+// Constant-parameter effects of the vocabulary and the largest size any IMU/GNSS set-up plausibly has:
+// a component whose minimal detectable size on this drive exceeds it cannot be tested here.
+constexpr double kDegH = 3.141592653589793 / 180.0 / 3600.0;
+const Screenable kScreenable[] = {
+    {"lever_arm", 3.0},                       // m
+    {"time_offset", 0.5},                     // s
+    {"gyro_scale", 0.02},                     // 20000 ppm
+    {"accel_scale", 0.02},
+    {"gyro_misalignment", 0.01},              // rad (2000 arcsec)
+    {"accel_misalignment", 0.01},
+    {"g_sensitivity", 200.0 * kDegH / 9.80665},  // 200 deg/h/g
+    {"gravity_anomaly", 2e-3},                // 200 mGal
+    {"gyro_bias", 1000.0 * kDegH},            // only when dropped from the model
+    {"accel_bias", 0.1},
+};
+
+}  // namespace
+
+est::BlockOptions* block_options(est::FilterOptions& o, const std::string& name) {
+  if (name == "gyro_bias") return &o.gyro_bias;
+  if (name == "accel_bias") return &o.accel_bias;
+  if (name == "gyro_scale") return &o.gyro_scale;
+  if (name == "accel_scale") return &o.accel_scale;
+  if (name == "gyro_misalignment") return &o.gyro_misalignment;
+  if (name == "accel_misalignment") return &o.accel_misalignment;
+  if (name == "g_sensitivity") return &o.g_sensitivity;
+  if (name == "lever_arm") return &o.lever_arm;
+  if (name == "gravity_anomaly") return &o.gravity_anomaly;
+  return nullptr;
+}
+
+void set_prior(est::FilterOptions& o, const std::string& name, const Eigen::VectorXd& value_si,
+               const Eigen::VectorXd& std_si) {
+  if (name == "time_offset") {
+    o.time_offset_init_s = value_si(0);
+    o.time_offset_std_s = std_si(0);
+    return;
+  }
+  if (est::BlockOptions* b = block_options(o, name)) {
+    b->init = value_si.head<3>();
+    b->init_std = std_si.head<3>();
+  }
+}
+
+CandidateSet make_candidates(const est::FilterOptions& options, const std::vector<std::string>& model_effects) {
+  CandidateSet set;
+  const est::EffectRegistry& reg = est::effect_registry();
+  for (const Screenable& s : kScreenable) {
+    if (std::find(model_effects.begin(), model_effects.end(), s.name) != model_effects.end()) continue;
+    Candidate c;
+    c.name = s.name;
+    c.effect = reg.make(s.name, options);
+    c.dim = c.effect->dim();
+    c.column = set.columns;
+    c.state_names = c.effect->state_names();
+    c.unit = c.effect->print_unit();
+    c.assumed_si = Eigen::VectorXd::Zero(c.dim);
+    // Outside the model the filter still applies the configured lever arm and time offset.
+    if (c.name == "lever_arm") c.assumed_si = options.lever_arm.init;
+    if (c.name == "time_offset") c.assumed_si(0) = options.time_offset_init_s;
+    c.plausible_si = Eigen::VectorXd::Constant(c.dim, s.plausible_si);
+    set.columns += c.dim;
+    set.candidates.push_back(std::move(c));
+  }
+  for (const char* name : {"gyro_moving_bias", "accel_moving_bias"})
+    if (std::find(model_effects.begin(), model_effects.end(), name) == model_effects.end())
+      set.not_screened.push_back({name, "stochastic (Gauss-Markov / random walk / ramp): see the NIS, whiteness and ldv allan"});
+  return set;
+}
+
+}  // namespace ldv::diag

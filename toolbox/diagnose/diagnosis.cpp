@@ -1,0 +1,114 @@
+#include "toolbox/diagnose/diagnosis.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <ctime>
+#include <sstream>
+
+namespace ldv::diag {
+namespace {
+
+double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
+std::vector<Segment> record_segments(const FilterRun& run, const std::vector<Segment>& labels) {
+  std::vector<Segment> out;
+  out.reserve(run.records.size());
+  for (const auto& r : run.records) out.push_back(segment_at(run.epochs, labels, r.t_s));
+  return out;
+}
+
+// The long-run factor and effective sample size used to deflate likelihood gains.
+void innovation_scale(const ModelCheck& mc, double& long_run_factor, double& effective_n) {
+  long_run_factor = 1.0;
+  effective_n = 0.0;
+  for (const SensorCheck& s : mc.sensors) {
+    long_run_factor = std::max(long_run_factor, s.long_run_factor);
+    effective_n += s.effective_n;
+  }
+}
+
+}  // namespace
+
+bool Diagnosis::consistent() const { return add.empty() && !steps.empty() && steps.front().check.consistent(); }
+
+Diagnosis diagnose(const DiagnoseInputs& in, const DiagnoseOptions& opt) {
+  const double cpu0 = cpu_seconds();
+  Diagnosis d;
+  d.model = opt.model.model;
+  est::FilterOptions current = opt.model;
+  FilterRun current_run;
+  for (int step = 0; step <= opt.max_added; ++step) {
+    DiagnosisStep st;
+    st.model_effects = est::resolve_model(current.model, current.add, current.drop);
+    if (step == 0) d.model_effects = st.model_effects;
+    st.candidates = make_candidates(current, st.model_effects);
+    if (opt.verbose) std::fprintf(stderr, "ldv diagnose: screening run %d (%zu candidates)\n", step + 1, st.candidates.candidates.size());
+    current_run = run_filter(in, current, &st.candidates);
+    ++d.filter_runs;
+    const std::vector<Segment> labels = classify_epochs(current_run.epochs);
+    st.check = check_model(current_run, labels);
+    st.screening = screen(st.candidates, current_run.records, record_segments(current_run, labels), opt.screening);
+    if (step == 0) {
+      d.before = current_run;
+      d.labels_before = labels;
+    }
+    double lrf, n_eff;
+    innovation_scale(st.check, lrf, n_eff);
+    const Confirmation* best = nullptr;
+    if (step < opt.max_added) {
+      int tried = 0;
+      for (const CandidateScore& cs : st.screening.ranked) {
+        if (!cs.significant || tried >= opt.max_confirmed_per_step) continue;
+        // A group member of an already tried candidate explains the same signal: try it only if it
+        // ranks close (the rerun decides between them).
+        ++tried;
+        if (opt.verbose) std::fprintf(stderr, "ldv diagnose: confirming %s\n", cs.name.c_str());
+        st.confirmations.push_back(confirm(in, current, st.check.loglik, cs, lrf, n_eff));
+        ++d.filter_runs;
+      }
+      for (const Confirmation& c : st.confirmations)
+        if (c.accepted && (!best || c.adjusted_gain - c.penalty > best->adjusted_gain - best->penalty)) best = &c;
+    }
+    if (best) {
+      st.added = best->effect;
+      d.add.push_back(best->effect);
+      current = best->options;
+      d.after = best->run;
+    }
+    d.steps.push_back(std::move(st));
+    if (!best) break;
+  }
+  d.final_options = current;
+  if (d.add.empty()) {
+    d.after = d.before;
+  }
+  d.labels_after = classify_epochs(d.after.epochs);
+  d.check_after = d.add.empty() ? d.steps.front().check : d.steps.back().check;
+  for (const std::string& name : d.add)
+    for (const EffectEstimate& e : d.after.estimates)
+      if (e.name == name) d.added_estimates.push_back(e);
+  d.truth_before = truth_error(d.before, d.labels_before, in.truth, opt.truth_skip_s);
+  d.truth_after = truth_error(d.after, d.labels_after, in.truth, opt.truth_skip_s);
+  d.cpu_s = cpu_seconds() - cpu0;
+  return d;
+}
+
+std::string config_snippet(const Diagnosis& d) {
+  std::ostringstream s;
+  s << "ldv:\n  model: " << d.model << "\n  add: [";
+  for (size_t i = 0; i < d.add.size(); ++i) s << (i ? ", " : "") << d.add[i];
+  s << "]\n";
+  for (const EffectEstimate& e : d.added_estimates) {
+    s << "  # " << e.name << " estimated [" << e.unit.unit << "]:";
+    for (int i = 0; i < e.value_si.size(); ++i) s << " " << e.value_si(i) * e.unit.scale;
+    s << "  (1-sigma";
+    for (int i = 0; i < e.std_si.size(); ++i) s << " " << e.std_si(i) * e.unit.scale;
+    s << ")\n";
+  }
+  for (const EffectEstimate& e : d.added_estimates)
+    if (e.name == "lever_arm")
+      s << "antlever: [" << e.value_si(0) << ", " << e.value_si(1) << ", " << e.value_si(2) << "]   # m, front-right-down\n";
+  return s.str();
+}
+
+}  // namespace ldv::diag

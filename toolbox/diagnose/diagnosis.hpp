@@ -1,0 +1,54 @@
+#pragma once
+// `ldv diagnose` as a library (DESIGN.md section 3): run the model, check it, screen every missing
+// effect, confirm the best by rerunning with it, stepwise; then the verdict and the rerun with it.
+#include <string>
+#include <vector>
+
+#include "toolbox/diagnose/confirmation.hpp"
+#include "toolbox/diagnose/model_check.hpp"
+#include "toolbox/diagnose/score_test.hpp"
+#include "toolbox/diagnose/truth_error.hpp"
+
+namespace ldv::diag {
+
+struct DiagnoseOptions {
+  est::FilterOptions model;      // the model under test
+  ScreeningOptions screening;
+  int max_added = 3;             // stepwise: at most this many effects added
+  int max_confirmed_per_step = 2;  // significant candidates rerun per step, best first
+  double truth_skip_s = 60.0;    // initial convergence left out of the error against truth
+  bool verbose = false;          // progress on stderr
+};
+
+// One stepwise round: the model as it was, what the screening found, what the reruns said.
+struct DiagnosisStep {
+  std::vector<std::string> model_effects;
+  CandidateSet candidates;
+  ModelCheck check;
+  ScreeningResult screening;
+  std::vector<Confirmation> confirmations;
+  std::string added;  // empty: the stepwise search stopped here
+};
+
+struct Diagnosis {
+  std::string model;                 // name of the model under test
+  std::vector<std::string> model_effects;
+  std::vector<DiagnosisStep> steps;  // steps[0] is the model under test
+  std::vector<std::string> add;      // the verdict
+  std::vector<EffectEstimate> added_estimates;  // their estimates in the final rerun
+  est::FilterOptions final_options;
+  FilterRun before, after;           // after == before when nothing is added
+  std::vector<Segment> labels_before, labels_after;
+  ModelCheck check_after;
+  TruthError truth_before, truth_after;
+  double cpu_s = 0.0;
+  int filter_runs = 0;
+  bool consistent() const;           // model check passes and nothing to add
+};
+
+Diagnosis diagnose(const DiagnoseInputs& in, const DiagnoseOptions& opt);
+
+// The KF-GINS YAML snippet that adds the verdict: `ldv: add: [...]` and the estimated priors.
+std::string config_snippet(const Diagnosis& d);
+
+}  // namespace ldv::diag

@@ -1,0 +1,145 @@
+#include "toolbox/diagnose/model_check.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Cholesky>
+
+#include "toolbox/allan/chi_square.hpp"
+#include "toolbox/diagnose/statistics.hpp"
+
+namespace ldv::diag {
+namespace {
+
+// Band for the mean of n_eff values each distributed as chi-square(dof)/dof*expected.
+Band mean_band(double value, double expected, double dof, double n_eff, double confidence) {
+  Band b;
+  b.value = value;
+  const double k = std::max(1.0, dof * n_eff);
+  const double a = 0.5 * (1.0 - confidence);
+  b.lo = expected * allan::chi_square_quantile(a, k) / k;
+  b.hi = expected * allan::chi_square_quantile(1.0 - a, k) / k;
+  return b;
+}
+
+std::vector<double> autocorrelation(const std::vector<Vec3>& x, int max_lag) {
+  const int n = static_cast<int>(x.size());
+  Vec3 mean = Vec3::Zero();
+  for (const Vec3& v : x) mean += v;
+  mean /= std::max(1, n);
+  std::vector<double> acf(max_lag + 1, 0.0);
+  double var = 0.0;
+  for (const Vec3& v : x) var += (v - mean).squaredNorm();
+  if (var <= 0.0) return acf;
+  for (int l = 0; l <= max_lag; ++l) {
+    double c = 0.0;
+    for (int i = 0; i + l < n; ++i) c += (x[i] - mean).dot(x[i + l] - mean);
+    acf[l] = c / var;
+  }
+  return acf;
+}
+
+}  // namespace
+
+bool SensorCheck::ok() const {
+  return mean_nis.ok() && rejected <= std::max(1, count / 100);
+}
+
+bool ModelCheck::consistent() const {
+  for (const SensorCheck& s : sensors)
+    if (!s.ok()) return false;
+  return true;
+}
+
+const SensorCheck* ModelCheck::find(est::MeasurementKind k) const {
+  for (const SensorCheck& s : sensors)
+    if (s.kind == k) return &s;
+  return nullptr;
+}
+
+double log_likelihood(const std::vector<SensitivityRecord>& records) {
+  double ll = 0.0;
+  for (const SensitivityRecord& r : records) {
+    const Eigen::LLT<Mat3> llt(r.S);
+    if (llt.info() != Eigen::Success) continue;
+    const double log_det = 2.0 * llt.matrixLLT().diagonal().array().log().sum();
+    ll += -0.5 * (log_det + r.innovation.dot(llt.solve(r.innovation)));
+  }
+  return ll;
+}
+
+ModelCheck check_model(const FilterRun& run, const std::vector<Segment>& labels, double confidence) {
+  ModelCheck mc;
+  mc.loglik = log_likelihood(run.records);
+  for (auto kind : {est::MeasurementKind::kGnssPosition, est::MeasurementKind::kGnssVelocity,
+                    est::MeasurementKind::kZeroVelocity}) {
+    std::vector<const SensitivityRecord*> rs;
+    for (const auto& r : run.records)
+      if (r.kind == kind && std::isfinite(r.nis)) rs.push_back(&r);
+    if (rs.size() < 10) continue;
+    SensorCheck sc;
+    sc.kind = kind;
+    sc.count = static_cast<int>(rs.size());
+    if (kind == est::MeasurementKind::kGnssPosition && rs.size() > 1)
+      mc.measurement_interval_s = (rs.back()->t_s - rs.front()->t_s) / (rs.size() - 1);
+    std::vector<Vec3> w;  // normalised innovations nu_i / sqrt(S_ii)
+    double nis_sum = 0.0;
+    Vec3 axis_sum = Vec3::Zero(), sq = Vec3::Zero();
+    for (const auto* r : rs) {
+      const Vec3 sd = r->S.diagonal().cwiseSqrt();
+      w.push_back(r->innovation.cwiseQuotient(sd));
+      nis_sum += r->nis;
+      axis_sum += w.back().cwiseAbs2();
+      sq += r->innovation.cwiseAbs2();
+      if (!r->accepted) ++sc.rejected;
+    }
+    const double n = sc.count;
+    sc.rms = (sq / n).cwiseSqrt();
+    // Whiteness: autocorrelation, Ljung-Box over h lags, integrated correlation time with Sokal's window.
+    const int max_lag = std::min(sc.count / 4, 200);
+    sc.autocorrelation = autocorrelation(w, max_lag);
+    const int h = std::min(20, std::max(1, sc.count / 5));
+    double q = 0.0;
+    for (int l = 1; l <= h && l <= max_lag; ++l) q += sc.autocorrelation[l] * sc.autocorrelation[l] / (n - l);
+    sc.ljung_box = n * (n + 2.0) * q;
+    sc.ljung_box_lags = h;
+    sc.ljung_box_p = chi_square_sf(sc.ljung_box, h);
+    double tau = 1.0;
+    for (int l = 1; l <= max_lag; ++l) {
+      tau += 2.0 * sc.autocorrelation[l];
+      if (l >= 5.0 * tau) break;
+    }
+    sc.correlation_time = std::clamp(tau, 1.0, n / 5.0);
+    sc.effective_n = n / sc.correlation_time;
+    sc.long_run_factor = sc.correlation_time;
+    sc.mean_nis = mean_band(nis_sum / n, 3.0, 3.0, sc.effective_n, confidence);
+    for (int i = 0; i < 3; ++i) sc.axis_nis[i] = mean_band(axis_sum(i) / n, 1.0, 1.0, sc.effective_n, confidence);
+
+    // Per manoeuvre segment.
+    std::array<SegmentCheck, kSegmentCount> seg;
+    std::array<Vec3, kSegmentCount> seg_sq;
+    std::array<double, kSegmentCount> seg_nis{};
+    for (int s = 0; s < kSegmentCount; ++s) {
+      seg[s].segment = static_cast<Segment>(s);
+      seg_sq[s].setZero();
+    }
+    for (const auto* r : rs) {
+      const int s = static_cast<int>(segment_at(run.epochs, labels, r->t_s));
+      ++seg[s].count;
+      seg_nis[s] += r->nis;
+      seg_sq[s] += r->innovation.cwiseAbs2();
+      if (!r->accepted) ++seg[s].rejected;
+    }
+    for (int s = 0; s < kSegmentCount; ++s) {
+      if (seg[s].count == 0) continue;
+      const double ns = seg[s].count;
+      seg[s].rms = (seg_sq[s] / ns).cwiseSqrt();
+      seg[s].mean_nis = mean_band(seg_nis[s] / ns, 3.0, 3.0, std::max(1.0, ns / sc.correlation_time), confidence);
+      sc.segments.push_back(seg[s]);
+    }
+    mc.sensors.push_back(std::move(sc));
+  }
+  return mc;
+}
+
+}  // namespace ldv::diag

@@ -1,0 +1,56 @@
+#pragma once
+// Model check: are the innovations what the model says they are? NIS per sensor and axis against
+// chi-square bands (with an effective sample size, since the innovations are correlated), whiteness
+// (autocorrelation, Ljung-Box), gate rejections, and the same per manoeuvre segment.
+#include <array>
+#include <string>
+#include <vector>
+
+#include "toolbox/diagnose/filter_run.hpp"
+#include "toolbox/diagnose/segments.hpp"
+
+namespace ldv::diag {
+
+struct Band {
+  double value = 0.0, lo = 0.0, hi = 0.0;
+  bool ok() const { return value >= lo && value <= hi; }
+};
+
+struct SegmentCheck {
+  Segment segment = Segment::kStraight;
+  int count = 0;
+  Band mean_nis;          // 3-dof NIS, band from the segment's effective sample size
+  Vec3 rms = Vec3::Zero();  // innovation RMS per axis (NED) [m or m/s]
+  int rejected = 0;
+};
+
+struct SensorCheck {
+  est::MeasurementKind kind = est::MeasurementKind::kGnssPosition;
+  int count = 0, rejected = 0;
+  Band mean_nis;                   // E[NIS] = 3
+  std::array<Band, 3> axis_nis;    // E[nu_i^2 / S_ii] = 1
+  Vec3 rms = Vec3::Zero();
+  std::vector<double> autocorrelation;  // of the normalised innovations (mean over axes), lags 0..
+  double ljung_box = 0.0, ljung_box_p = 1.0;
+  int ljung_box_lags = 0;
+  double correlation_time = 1.0;   // integrated autocorrelation time [records]
+  double effective_n = 0.0;        // count / correlation_time
+  double long_run_factor = 1.0;    // long-run variance of the normalised innovations over their variance
+  std::vector<SegmentCheck> segments;
+  bool ok() const;
+};
+
+struct ModelCheck {
+  std::vector<SensorCheck> sensors;
+  double loglik = 0.0;        // sum of -0.5 (log det S + NIS) over all measurements
+  double measurement_interval_s = 1.0;
+  bool consistent() const;
+  const SensorCheck* find(est::MeasurementKind k) const;
+};
+
+ModelCheck check_model(const FilterRun& run, const std::vector<Segment>& epoch_labels, double confidence = 0.95);
+
+// Sum over the measurements of -0.5 (log det S + nu^T S^-1 nu).
+double log_likelihood(const std::vector<SensitivityRecord>& records);
+
+}  // namespace ldv::diag

@@ -1,0 +1,137 @@
+#include "toolbox/diagnose/report_json.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "common/io/input_error.hpp"
+
+namespace ldv::diag {
+namespace {
+
+std::string num(double v) {
+  if (!std::isfinite(v)) return "null";
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
+
+std::string str(const std::string& s) {
+  std::string o = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') o += '\\';
+    if (c == '\n') { o += "\\n"; continue; }
+    o += c;
+  }
+  return o + "\"";
+}
+
+template <typename F>
+std::string list(size_t n, F item) {
+  std::string o = "[";
+  for (size_t i = 0; i < n; ++i) o += (i ? ", " : "") + item(i);
+  return o + "]";
+}
+
+std::string vec(const Eigen::VectorXd& v) {
+  return list(v.size(), [&](size_t i) { return num(v(i)); });
+}
+
+std::string names(const std::vector<std::string>& v) {
+  return list(v.size(), [&](size_t i) { return str(v[i]); });
+}
+
+std::string check_json(const ModelCheck& mc) {
+  return list(mc.sensors.size(), [&](size_t i) {
+    const SensorCheck& s = mc.sensors[i];
+    std::ostringstream o;
+    o << "{\"sensor\": " << str(est::measurement_name(s.kind)) << ", \"count\": " << s.count
+      << ", \"rejected\": " << s.rejected << ", \"mean_nis\": " << num(s.mean_nis.value) << ", \"mean_nis_band\": ["
+      << num(s.mean_nis.lo) << ", " << num(s.mean_nis.hi) << "], \"axis_nis\": "
+      << list(3, [&](size_t a) { return num(s.axis_nis[a].value); }) << ", \"rms\": "
+      << list(3, [&](size_t a) { return num(s.rms(a)); }) << ", \"ljung_box\": " << num(s.ljung_box)
+      << ", \"ljung_box_p\": " << num(s.ljung_box_p) << ", \"effective_n\": " << num(s.effective_n)
+      << ", \"ok\": " << (s.ok() ? "true" : "false") << ", \"segments\": "
+      << list(s.segments.size(), [&](size_t k) {
+           const SegmentCheck& g = s.segments[k];
+           return "{\"segment\": " + str(segment_name(g.segment)) + ", \"count\": " + std::to_string(g.count) +
+                  ", \"mean_nis\": " + num(g.mean_nis.value) + ", \"ok\": " + (g.mean_nis.ok() ? "true" : "false") +
+                  ", \"rms\": " + list(3, [&](size_t a) { return num(g.rms(a)); }) + "}";
+         })
+      << "}";
+    return o.str();
+  });
+}
+
+std::string truth_json(const TruthError& t) {
+  if (!t.available) return "null";
+  return "{\"rms_pos_3d_m\": " + num(t.rms_pos_3d_m) + ", \"rms_horizontal_m\": " + num(t.rms_horizontal_m) +
+         ", \"rms_vertical_m\": " + num(t.rms_vertical_m) + ", \"max_horizontal_m\": " + num(t.max_horizontal_m) +
+         ", \"rms_yaw_deg\": " + num(t.rms_yaw_deg) + "}";
+}
+
+std::string candidate_json(const CandidateScore& c) {
+  std::ostringstream o;
+  o << "{\"effect\": " << str(c.name) << ", \"statistic\": " << num(c.statistic) << ", \"p_value\": " << num(c.p_value)
+    << ", \"estimate\": " << vec(c.estimate_si) << ", \"sigma\": " << vec(c.sigma_si) << ", \"group\": " << names(c.group)
+    << ", \"dof\": " << c.tested.size() << ", \"testable\": " << (c.testable ? "true" : "false")
+    << ", \"significant\": " << (c.significant ? "true" : "false") << ", \"statistic_model\": " << num(c.statistic_model)
+    << ", \"minimal_detectable\": " << vec(c.mds_si) << ", \"state_names\": " << names(c.state_names)
+    << ", \"print_unit\": " << str(c.unit.unit) << ", \"print_scale\": " << num(c.unit.scale);
+  if (!c.separate_by.empty()) o << ", \"separate_by\": " << str(c.separate_by);
+  o << "}";
+  return o.str();
+}
+
+}  // namespace
+
+std::string diagnosis_json(const Diagnosis& d) {
+  std::ostringstream o;
+  const ScreeningResult& first = d.steps.front().screening;
+  o << "{\n  \"model\": " << str(d.model) << ",\n  \"model_effects\": " << names(d.model_effects)
+    << ",\n  \"consistent\": " << (d.consistent() ? "true" : "false") << ",\n  \"candidates\": [\n    ";
+  for (size_t i = 0; i < first.ranked.size(); ++i) o << (i ? ",\n    " : "") << candidate_json(first.ranked[i]);
+  o << "\n  ],\n  \"verdict\": {\"add\": " << names(d.add) << ", \"estimates\": "
+    << list(d.added_estimates.size(), [&](size_t i) {
+         const EffectEstimate& e = d.added_estimates[i];
+         return "{\"effect\": " + str(e.name) + ", \"value\": " + vec(e.value_si) + ", \"sigma\": " + vec(e.std_si) + "}";
+       })
+    << ", \"config_snippet\": " << str(config_snippet(d)) << "},\n";
+  o << "  \"screening\": {\"epochs\": " << first.epochs << ", \"bandwidth_epochs\": " << first.bandwidth_epochs
+    << ", \"nu_eff\": " << num(first.nu_eff) << ", \"threshold_p\": " << num(first.threshold_p)
+    << ", \"not_screened\": "
+    << list(d.steps.front().candidates.not_screened.size(), [&](size_t i) {
+         const NotScreened& n = d.steps.front().candidates.not_screened[i];
+         return "{\"effect\": " + str(n.name) + ", \"reason\": " + str(n.reason) + "}";
+       })
+    << "},\n";
+  o << "  \"steps\": "
+    << list(d.steps.size(), [&](size_t i) {
+         const DiagnosisStep& s = d.steps[i];
+         return "{\"model_effects\": " + names(s.model_effects) + ", \"top\": " +
+                (s.screening.ranked.empty() ? std::string("null") : str(s.screening.ranked.front().name)) +
+                ", \"confirmations\": " +
+                list(s.confirmations.size(), [&](size_t k) {
+                  const Confirmation& c = s.confirmations[k];
+                  return "{\"effect\": " + str(c.effect) + ", \"loglik_gain\": " + num(c.loglik_gain) +
+                         ", \"adjusted_gain\": " + num(c.adjusted_gain) + ", \"penalty\": " + num(c.penalty) +
+                         ", \"accepted\": " + (c.accepted ? "true" : "false") + "}";
+                }) +
+                ", \"added\": " + (s.added.empty() ? std::string("null") : str(s.added)) + "}";
+       })
+    << ",\n";
+  o << "  \"model_check\": {\"before\": " << check_json(d.steps.front().check) << ", \"after\": " << check_json(d.check_after)
+    << "},\n";
+  o << "  \"truth\": {\"before\": " << truth_json(d.truth_before) << ", \"after\": " << truth_json(d.truth_after) << "},\n";
+  o << "  \"filter_runs\": " << d.filter_runs << ", \"cpu_s\": " << num(d.cpu_s) << "\n}\n";
+  return o.str();
+}
+
+void write_json(const Diagnosis& d, const std::string& path) {
+  std::ofstream f(path);
+  if (!f) throw InputError(path, 0, "cannot open for writing");
+  f << diagnosis_json(d);
+}
+
+}  // namespace ldv::diag

@@ -1,0 +1,123 @@
+#include "toolbox/diagnose/report_text.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <ostream>
+#include <string>
+
+namespace ldv::diag {
+namespace {
+
+std::string fmt(const char* f, double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, f, v);
+  return b;
+}
+
+std::string values(const Eigen::VectorXd& v, double scale) {
+  std::string s;
+  for (int i = 0; i < v.size(); ++i) s += (i ? " " : "") + (std::isfinite(v(i)) ? fmt("%.4g", v(i) * scale) : std::string("-"));
+  return s;
+}
+
+void print_check(std::ostream& out, const ModelCheck& mc) {
+  for (const SensorCheck& s : mc.sensors) {
+    out << "  " << est::measurement_name(s.kind) << ": " << s.count << " measurements, " << s.rejected
+        << " gate rejections; mean NIS " << fmt("%.2f", s.mean_nis.value) << " (band " << fmt("%.2f", s.mean_nis.lo)
+        << ".." << fmt("%.2f", s.mean_nis.hi) << ") " << (s.ok() ? "ok" : "FAILS") << "\n";
+    out << "    per axis N E D: " << fmt("%.2f", s.axis_nis[0].value) << " " << fmt("%.2f", s.axis_nis[1].value) << " "
+        << fmt("%.2f", s.axis_nis[2].value) << "; RMS " << fmt("%.4f", s.rms(0)) << " " << fmt("%.4f", s.rms(1)) << " "
+        << fmt("%.4f", s.rms(2)) << "\n";
+    out << "    whiteness: lag-1 autocorrelation " << fmt("%.2f", s.autocorrelation.size() > 1 ? s.autocorrelation[1] : 0.0)
+        << ", Ljung-Box(" << s.ljung_box_lags << ") " << fmt("%.1f", s.ljung_box) << " p=" << fmt("%.2g", s.ljung_box_p)
+        << ", correlation time " << fmt("%.1f", s.correlation_time) << " measurements, effective N "
+        << fmt("%.0f", s.effective_n) << "\n";
+    for (const SegmentCheck& g : s.segments)
+      out << "    " << segment_name(g.segment) << std::string(14 - std::string(segment_name(g.segment)).size(), ' ')
+          << fmt("%5.0f", g.count) << "  mean NIS " << fmt("%7.2f", g.mean_nis.value) << (g.mean_nis.ok() ? "   " : " ! ")
+          << " RMS " << fmt("%.4f", g.rms(0)) << " " << fmt("%.4f", g.rms(1)) << " " << fmt("%.4f", g.rms(2))
+          << (g.rejected ? "  rejected " + std::to_string(g.rejected) : std::string()) << "\n";
+  }
+}
+
+void print_screening(std::ostream& out, const ScreeningResult& s) {
+  out << "  " << s.epochs << " measurement epochs, Newey-West bandwidth " << s.bandwidth_epochs << " epochs (dof "
+      << fmt("%.0f", s.nu_eff) << "), threshold p < " << fmt("%.2g", s.threshold_p) << "\n";
+  out << "  rank effect               dof  statistic   p-value   estimate +- sigma [unit]   (min detectable)\n";
+  int rank = 0;
+  for (const CandidateScore& c : s.ranked) {
+    ++rank;
+    if (!c.testable) {
+      out << "   -   " << c.name << std::string(21 - c.name.size(), ' ')
+          << "untestable on this drive (too little information)\n";
+      continue;
+    }
+    out << "  " << fmt("%3.0f", rank) << "  " << c.name << std::string(21 - c.name.size(), ' ') << fmt("%3.0f", c.tested.size())
+        << fmt("%11.1f", c.statistic) << fmt("%10.2g", c.p_value) << (c.significant ? " * " : "   ") << "["
+        << values(c.estimate_si, c.unit.scale) << "] +- [" << values(c.sigma_si, c.unit.scale) << "] " << c.unit.unit
+        << "  (" << values(c.mds_si, c.unit.scale) << ")\n";
+    if (c.group.size() > 1) {
+      out << "        group (cannot be told apart here):";
+      for (const auto& g : c.group) out << " " << g;
+      out << "\n        to separate: " << c.separate_by << "\n";
+    }
+  }
+}
+
+void print_truth(std::ostream& out, const char* label, const TruthError& t) {
+  if (!t.available) return;
+  out << "  " << label << " position error RMS 3D " << fmt("%.3f", t.rms_pos_3d_m) << " m (horizontal "
+      << fmt("%.3f", t.rms_horizontal_m) << ", vertical " << fmt("%.3f", t.rms_vertical_m) << ", max horizontal "
+      << fmt("%.3f", t.max_horizontal_m) << "), yaw RMS " << fmt("%.3f", t.rms_yaw_deg) << " deg\n";
+}
+
+}  // namespace
+
+void print_report(std::ostream& out, const Diagnosis& d) {
+  out << "ldv diagnose: model " << d.model << " (";
+  for (size_t i = 0; i < d.model_effects.size(); ++i) out << (i ? " " : "") << d.model_effects[i];
+  out << ")\n\n1. Model check\n";
+  print_check(out, d.steps.front().check);
+  for (size_t k = 0; k < d.steps.size(); ++k) {
+    const DiagnosisStep& st = d.steps[k];
+    out << "\n" << (k == 0 ? "2. Screening (score test of every missing effect, one pass)" : "   Rescreening with ")
+        << (k == 0 ? std::string() : d.steps[k - 1].added + " added") << "\n";
+    print_screening(out, st.screening);
+    if (k == 0)
+      for (const NotScreened& n : st.candidates.not_screened) out << "   -   " << n.name << ": not screened, " << n.reason << "\n";
+    for (const Confirmation& c : st.confirmations)
+      out << "  confirm " << c.effect << ": log-likelihood gain " << fmt("%.1f", c.loglik_gain) << ", /long-run factor "
+          << fmt("%.1f", c.adjusted_gain) << " vs BIC penalty " << fmt("%.1f", c.penalty) << " -> "
+          << (c.accepted ? "accepted" : "rejected") << "\n";
+  }
+  out << "\n3. Verdict: ";
+  if (d.add.empty()) {
+    out << "nothing to add" << (d.steps.front().check.consistent() ? " (the model is consistent with the data)" : "")
+        << "\n";
+  } else {
+    out << "add";
+    for (const auto& a : d.add) out << " " << a;
+    out << "\n";
+    for (const EffectEstimate& e : d.added_estimates)
+      out << "  " << e.name << " = [" << values(e.value_si, e.unit.scale) << "] +- [" << values(e.std_si, e.unit.scale)
+          << "] " << e.unit.unit << "\n";
+    out << "  config snippet (KF-GINS yaml):\n";
+    const std::string snip = config_snippet(d);
+    size_t p = 0;
+    while (p < snip.size()) {
+      const size_t q = snip.find('\n', p);
+      out << "    " << snip.substr(p, q - p) << "\n";
+      p = q == std::string::npos ? snip.size() : q + 1;
+    }
+    out << "\n4. Rerun with it\n";
+    print_check(out, d.check_after);
+  }
+  if (d.truth_before.available) {
+    out << "\n   Against truth\n";
+    print_truth(out, "before:", d.truth_before);
+    if (!d.add.empty()) print_truth(out, "after: ", d.truth_after);
+  }
+  out << "\n  " << d.filter_runs << " filter runs, " << fmt("%.1f", d.cpu_s) << " s CPU\n";
+}
+
+}  // namespace ldv::diag

@@ -1,0 +1,103 @@
+#include "toolbox/diagnose/sensitivity_observer.hpp"
+
+#include "common/geo/earth_model.hpp"
+#include "estimator/state/state_layout.hpp"
+#include "estimator/update/gnss_velocity.hpp"
+
+namespace ldv::diag {
+
+using est::kAtt;
+using est::kVel;
+using est::Mat3X;
+
+SensitivityObserver::SensitivityObserver(const est::NavFilter& filter, const CandidateSet& candidates)
+    : filter_(filter), set_(candidates) {
+  Psi_ = Eigen::MatrixXd::Zero(filter.layout().size(), set_.columns);
+  Gamma_ = Eigen::Matrix<double, 9, Eigen::Dynamic>::Zero(9, set_.columns);
+}
+
+void SensitivityObserver::on_imu_epoch() {
+  const est::NavState& s = filter_.state();
+  if (last_t_s_ < 0.0 || s.t_s <= last_t_s_) {
+    last_t_s_ = s.t_s;
+    return;
+  }
+  const double dt = s.t_s - last_t_s_;
+  last_t_s_ = s.t_s;
+  const est::MechanizationStep& st = filter_.last_step();
+  est::LinearizationPoint lp;
+  lp.C_b_n = s.C_b_n();
+  lp.omega_ib_b_rad_s = st.omega_ib_b_rad_s;
+  lp.f_b_mps2 = st.f_b_mps2;
+  const Mat3 Cdt = lp.C_b_n * dt;
+  for (const Candidate& c : set_.candidates) {
+    const est::Effect& e = *c.effect;
+    const bool g = e.drives_gyro(), a = e.drives_accel();
+    if (g || a) {
+      J_gyro_ = Mat3X::Zero(3, c.dim);
+      J_accel_ = Mat3X::Zero(3, c.dim);
+      e.imu_jacobians(lp, J_gyro_, J_accel_);
+      // Same couplings as the filter's F: d(phi)/dt = -C_b_n delta_w, d(delta_v)/dt = C_b_n delta_f.
+      if (g) Gamma_.block(kAtt, c.column, 3, c.dim).noalias() -= Cdt * J_gyro_;
+      if (a) Gamma_.block(kVel, c.column, 3, c.dim).noalias() += Cdt * J_accel_;
+    }
+    if (e.drives_velocity_n()) {
+      Mat3X J = Mat3X::Zero(3, c.dim);
+      e.velocity_n_jacobian(J);
+      Gamma_.block(kVel, c.column, 3, c.dim) += J * dt;
+    }
+  }
+}
+
+void SensitivityObserver::on_propagation(double, double, const Eigen::MatrixXd& Phi, const Eigen::MatrixXd&) {
+  Psi_ = Phi * Psi_;
+  // Gamma was accumulated along the step: half a step of the navigation error dynamics acts on it
+  // (the filter's Phi_ne = B + A B / 2 with A ~ Phi_nn - I).
+  const Eigen::Matrix<double, 9, 9> half = 0.5 * (Phi.topLeftCorner<9, 9>() + Eigen::Matrix<double, 9, 9>::Identity());
+  Psi_.topRows<9>() += half * Gamma_;
+  Gamma_.setZero();
+}
+
+void SensitivityObserver::on_update(const est::InnovationRecord& r, const Eigen::MatrixXd& H,
+                                    const Eigen::MatrixXd& K) {
+  // Linearisation point at the measurement epoch (the state was just corrected: a negligible change).
+  const est::NavState& s = filter_.state();
+  const est::MechanizationStep& st = filter_.last_step();
+  est::LinearizationPoint lp;
+  lp.C_b_n = s.C_b_n();
+  lp.omega_ib_b_rad_s = st.omega_ib_b_rad_s;
+  lp.f_b_mps2 = st.f_b_mps2;
+  lp.a_n_mps2 = st.a_n_mps2;
+  lp.lever_arm_b_m = filter_.error_model().lever_arm_b_m;
+  lp.omega_in_n_rad_s = earth::omega_ie_n(s.pos.lat_rad) + earth::omega_en_n(s.pos.lat_rad, s.pos.h_m, s.v_n_mps);
+  lp.v_ant_n_mps = est::antenna_velocity_n(s, lp);
+
+  SensitivityRecord rec;
+  rec.t_s = r.t_s;
+  rec.kind = r.kind;
+  rec.innovation = r.innovation;
+  rec.S = r.S;
+  rec.nis = r.nis;
+  rec.accepted = r.accepted;
+  rec.s = H * Psi_;  // 3 x P
+  const bool velocity = r.kind == est::MeasurementKind::kGnssVelocity;
+  const Mat3 dv_dw = -lp.C_b_n * skew(lp.lever_arm_b_m);  // a gyro error moves the antenna
+  for (const Candidate& c : set_.candidates) {
+    const est::Effect& e = *c.effect;
+    if (e.enters(r.kind)) {
+      Mat3X Hc = Mat3X::Zero(3, c.dim);
+      e.measurement_jacobian(r.kind, lp, Hc);
+      rec.s.middleCols(c.column, c.dim) += Hc;
+    }
+    if (velocity && e.drives_gyro()) {
+      J_gyro_ = Mat3X::Zero(3, c.dim);
+      J_accel_ = Mat3X::Zero(3, c.dim);
+      e.imu_jacobians(lp, J_gyro_, J_accel_);
+      rec.s.middleCols(c.column, c.dim) += dv_dw * J_gyro_;
+    }
+  }
+  if (r.accepted) Psi_.noalias() -= K * rec.s;
+  records_.push_back(std::move(rec));
+}
+
+}  // namespace ldv::diag

@@ -1,0 +1,52 @@
+#pragma once
+// Carries every candidate's sensitivity through the filter's own transition matrices and gains, in
+// the same pass as the filter (the "consider state" recursion of a score test):
+//   candidate error e = assumed - true (the filter's error convention: estimate minus truth)
+//   propagation  Psi <- Phi Psi + Gamma     Gamma = how e drives the navigation error over the step
+//   measurement  s = H Psi + H_e            (E[innovation] = s e, innovation = z_hat - z)
+//                Psi <- Psi - K s           (the filter's correction also absorbs part of e)
+// Psi is n x P (n = the model's full error state, P = all candidate parameters).
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "estimator/filter/nav_filter.hpp"
+#include "toolbox/diagnose/candidates.hpp"
+
+namespace ldv::diag {
+
+// One measurement as the diagnosis needs it: pre-gate innovation, its covariance, and its sensitivity.
+struct SensitivityRecord {
+  double t_s = 0.0;
+  est::MeasurementKind kind = est::MeasurementKind::kGnssPosition;
+  Vec3 innovation = Vec3::Zero();  // z_hat - z
+  Mat3 S = Mat3::Identity();
+  double nis = 0.0;
+  bool accepted = true;
+  Eigen::Matrix<double, 3, Eigen::Dynamic> s;  // d(innovation)/d(e), 3 x P
+};
+
+class SensitivityObserver final : public est::FilterObserver {
+ public:
+  SensitivityObserver(const est::NavFilter& filter, const CandidateSet& candidates);
+
+  bool wants_matrices() const override { return true; }
+  void on_propagation(double t_s, double dt_s, const Eigen::MatrixXd& Phi, const Eigen::MatrixXd& Qd) override;
+  void on_update(const est::InnovationRecord& r, const Eigen::MatrixXd& H, const Eigen::MatrixXd& K) override;
+  // Call after every IMU sample (RunCallbacks::on_epoch): accumulates Gamma at the filter's own
+  // compensated rate, specific force and attitude.
+  void on_imu_epoch();
+
+  const std::vector<SensitivityRecord>& records() const { return records_; }
+
+ private:
+  const est::NavFilter& filter_;
+  const CandidateSet& set_;
+  Eigen::MatrixXd Psi_;                             // n x P
+  Eigen::Matrix<double, 9, Eigen::Dynamic> Gamma_;  // 9 x P, accumulated since the last propagation
+  Mat3X J_gyro_, J_accel_;
+  double last_t_s_ = -1.0;
+  std::vector<SensitivityRecord> records_;
+};
+
+}  // namespace ldv::diag

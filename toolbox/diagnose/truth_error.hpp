@@ -1,0 +1,24 @@
+#pragma once
+// Navigation error of a run against truth (truth.nav: IMU centre), at the run's 10 Hz epochs.
+#include <array>
+#include <vector>
+
+#include "toolbox/diagnose/filter_run.hpp"
+#include "toolbox/diagnose/segments.hpp"
+
+namespace ldv::diag {
+
+struct TruthError {
+  bool available = false;
+  std::vector<double> t_s;
+  std::vector<Vec3> pos_err_ned_m;  // estimate minus truth
+  double rms_pos_3d_m = 0.0, rms_horizontal_m = 0.0, rms_vertical_m = 0.0, max_horizontal_m = 0.0;
+  double rms_yaw_deg = 0.0;
+  std::array<double, kSegmentCount> rms_pos_3d_by_segment_m{};
+};
+
+// Epochs before `skip_s` after the start (initial convergence) are left out of the RMS.
+TruthError truth_error(const FilterRun& run, const std::vector<Segment>& labels, const std::vector<NavRecord>& truth,
+                       double skip_s = 0.0);
+
+}  // namespace ldv::diag

@@ -1,0 +1,82 @@
+// `ldv diagnose`: compare the model with the measurements, see where it fails, find the missing
+// physical effect, add it, watch the error fall (DESIGN.md section 3; toolbox/diagnose/README.md).
+//   ldv diagnose --kfgins-config FILE.yaml [--model NAME] [--add EFFECT]... [--drop EFFECT]...
+//                [--json OUT.json] [--truth truth.nav] [--plots DIR]
+#include <iostream>
+#include <memory>
+
+#include "common/formats/kfgins_config.hpp"
+#include "common/formats/kfgins_files.hpp"
+#include "common/io/input_error.hpp"
+#include "estimator/run/run_navigation.hpp"
+#include "toolbox/diagnose/diagnosis.hpp"
+#include "toolbox/diagnose/plots.hpp"
+#include "toolbox/diagnose/report_json.hpp"
+#include "toolbox/diagnose/report_text.hpp"
+#include "tools/ldv/command_registry.hpp"
+
+namespace {
+using namespace ldv;
+
+struct DiagnoseArgs {
+  std::string config, imu, gnss, model, json, truth, plots;
+  std::vector<std::string> add, drop;
+  int max_add = 3;
+  double alpha = 0.05, bandwidth_s = 120.0;
+  bool quiet = false;
+};
+
+void run_diagnose(const DiagnoseArgs& a) {
+  diag::DiagnoseInputs in;
+  in.cfg = load_kfgins_config(a.config);
+  if (!a.imu.empty()) in.cfg.imu_path = a.imu;
+  if (!a.gnss.empty()) in.cfg.gnss_path = a.gnss;
+  diag::DiagnoseOptions opt;
+  opt.model = est::options_from_kfgins(in.cfg);
+  // The model under test: --model, else ldv.model, else the KF-GINS equivalent (kfgins21).
+  if (!a.model.empty()) opt.model.model = a.model;
+  opt.model.add.insert(opt.model.add.end(), a.add.begin(), a.add.end());
+  opt.model.drop.insert(opt.model.drop.end(), a.drop.begin(), a.drop.end());
+  try {
+    est::resolve_model(opt.model.model, opt.model.add, opt.model.drop);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(a.config, 0, e.what());
+  }
+  opt.max_added = a.max_add;
+  opt.screening.alpha = a.alpha;
+  opt.screening.bandwidth_s = a.bandwidth_s;
+  opt.verbose = !a.quiet;
+  in.imu = read_kfgins_imu(in.cfg.imu_path);
+  in.gnss = read_kfgins_gnss(in.cfg.gnss_path);
+  if (!a.truth.empty()) in.truth = read_nav(a.truth);
+
+  const diag::Diagnosis d = diag::diagnose(in, opt);
+  diag::print_report(std::cout, d);
+  if (!a.json.empty()) diag::write_json(d, a.json);
+  if (!a.plots.empty()) {
+    const auto written = diag::write_plots(d, a.plots);
+    if (!a.quiet) std::cerr << "ldv diagnose: " << written << " plots in " << a.plots << "\n";
+  }
+}
+
+void add_diagnose_command(CLI::App& app) {
+  auto args = std::make_shared<DiagnoseArgs>();
+  CLI::App* c = app.add_subcommand("diagnose", "find the physical effect the model is missing, add it, show the error fall");
+  c->add_option("--kfgins-config", args->config, "KF-GINS YAML configuration (inputs, noise, initial state)")->required();
+  c->add_option("--imu", args->imu, "IMU increments (KF-GINS imu.txt), overrides the config");
+  c->add_option("--gnss", args->gnss, "GNSS solutions (KF-GINS gnss.txt), overrides the config");
+  c->add_option("--model", args->model, "model under test: ins15 | kfgins21 | geoldv51 (default ldv.model or kfgins21)");
+  c->add_option("--add", args->add, "add an effect to the model under test (repeatable)");
+  c->add_option("--drop", args->drop, "drop an effect from the model under test (repeatable)");
+  c->add_option("--json", args->json, "write the diagnosis as JSON");
+  c->add_option("--truth", args->truth, "truth .nav (KF-GINS layout, IMU centre): navigation error before/after");
+  c->add_option("--plots", args->plots, "write gnuplot PNGs (and their data and scripts) into this folder");
+  c->add_option("--max-add", args->max_add, "stepwise: add at most this many effects (default 3)");
+  c->add_option("--alpha", args->alpha, "family-wise false-alarm rate of the screening (default 0.05)");
+  c->add_option("--bandwidth", args->bandwidth_s, "long-run variance bandwidth [s] (default 120: > GNSS error correlation)");
+  c->add_flag("--quiet", args->quiet, "no progress on stderr");
+  c->callback([args] { run_diagnose(*args); });
+}
+
+const ldv::cli::RegisterCommand kRegister{"diagnose", &add_diagnose_command};
+}  // namespace
