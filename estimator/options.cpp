@@ -18,13 +18,16 @@ FilterOptions::FilterOptions() {
   gyro_scale = {Vec3::Zero(), Vec3::Constant(300e-6), BlockOptions::Process::kGaussMarkov,
                 Vec3::Constant(300e-6), 3600.0, Vec3::Zero()};
   accel_scale = gyro_scale;
-  gyro_misalignment = {Vec3::Zero(), Vec3::Constant(100e-6), BlockOptions::Process::kConstant, {}, 3600.0, {}};
+  gyro_misalignment = {Vec3::Zero(), Vec3::Constant(100e-6), BlockOptions::Process::kConstant, Vec3::Zero(), 3600.0, Vec3::Zero()};
   accel_misalignment = gyro_misalignment;
-  g_sensitivity = {Vec3::Zero(), Vec3::Constant(1.0 * deg_h / 9.8), BlockOptions::Process::kConstant, {}, 3600.0, {}};
-  lever_arm = {Vec3::Zero(), Vec3::Constant(0.05), BlockOptions::Process::kConstant, {}, 3600.0, {}};
+  g_sensitivity = {Vec3::Zero(), Vec3::Constant(1.0 * deg_h / 9.8), BlockOptions::Process::kConstant, Vec3::Zero(), 3600.0, Vec3::Zero()};
+  lever_arm = {Vec3::Zero(), Vec3::Constant(0.05), BlockOptions::Process::kConstant, Vec3::Zero(), 3600.0, Vec3::Zero()};
   // Gravity disturbance: ~30 mGal over ~1000 s (a few km at driving speed).
   gravity_anomaly = {Vec3::Zero(), Vec3::Constant(30e-5), BlockOptions::Process::kGaussMarkov,
                      Vec3::Constant(30e-5), 1000.0, Vec3::Zero()};
+  // Slowly varying RTK-fixed error (multipath, residual troposphere): ~1 cm horizontal, 1.5 cm vertical, 60 s.
+  gnss_position_bias = {Vec3::Zero(), Vec3(0.008, 0.008, 0.015), BlockOptions::Process::kGaussMarkov,
+                        Vec3(0.008, 0.008, 0.015), 60.0, Vec3::Zero()};
   gyro_moving_bias = {Vec3::Constant(1.0 * deg_h), Vec3::Constant(0.5 * deg_h), 3600.0,
                       Vec3::Constant(0.01 * deg_h), Vec3::Constant(0.01 * deg_h / 3600.0)};
   accel_moving_bias = {Vec3::Constant(1e-3 * 9.8), Vec3::Constant(0.5e-3 * 9.8), 3600.0,
@@ -64,6 +67,7 @@ void FilterOptions::print(std::ostream& out) const {
   print_block(out, "accel_scale", accel_scale, 1e6, "ppm");
   print_block(out, "lever_arm", lever_arm, 1.0, "m");
   print_block(out, "gravity_anomaly", gravity_anomaly, 1e5, "mGal");
+  print_block(out, "gnss_position_bias", gnss_position_bias, 1e2, "cm");
   out << "  covariance period " << cov_period_s << " s, gate probability " << gate_probability
       << ", GNSS velocity " << (use_gnss_velocity ? "used" : "ignored") << ", ZUPT "
       << (zupt.enabled ? "on" : "off") << ", late-measurement horizon " << history_s << " s\n";

@@ -133,6 +133,7 @@ void write_all(const fs::path& tmp, const fs::path& final_dir, SimResult& r) {
   write_kfgins_imu((tmp / "imu.txt").string(), r.imu);
   write_kfgins_gnss((tmp / "gnss.txt").string(), r.gnss, q.gnss_velocity);
   write_truth_nav((tmp / "truth.nav").string(), r);
+  r.kfgins.ldv["week"] = q.gps_week;  // KF-GINS has no week: `ldv nav` reads ldv.week for its .nav
   save_kfgins_config(r.kfgins, (tmp / "kfgins.yaml").string());
   write_truth_effects((tmp / "truth_effects.yaml").string(), r);
   write_truth_errors((tmp / "truth_errors.txt").string(), r);

@@ -38,8 +38,11 @@ class NavWriter {
   void write(const NavRecord& r);
 
  private:
+  void flush();
   std::FILE* file_;
   std::string path_;
+  std::vector<char> buf_;  // lines are formatted here and written in 1 MiB blocks
+  size_t used_ = 0;
 };
 
 }  // namespace ldv

@@ -34,6 +34,7 @@ struct LinearizationPoint {
   Vec3 a_n_mps2 = Vec3::Zero();     // acceleration (for time_offset on velocity)
   Vec3 omega_in_n_rad_s = Vec3::Zero();
   Vec3 lever_arm_b_m = Vec3::Zero();
+  Vec3 gnss_position_bias_n_m = Vec3::Zero();  // estimate added to the predicted GNSS position
 };
 
 enum class MeasurementKind { kGnssPosition, kGnssVelocity, kZeroVelocity };
@@ -73,6 +74,9 @@ class Effect {
   // arm are added by the velocity updater from J_gyro, not here.
   virtual bool enters(MeasurementKind) const { return false; }
   virtual void measurement_jacobian(MeasurementKind, const LinearizationPoint& lp, Mat3XRef H) const {}
+  // A block that models part of a measurement's error as a state removes that part from its noise R
+  // (gnss_position_bias: the reported std covers white noise and the slowly varying bias).
+  virtual void adjust_measurement_noise(MeasurementKind, Mat3& R) const {}
 
   // Adds the block's estimate to the model that corrects raw increments / measurements.
   virtual void apply(const Eigen::Ref<const Eigen::VectorXd>& x, ImuErrorModel& model) const = 0;

@@ -16,6 +16,7 @@ struct ImuErrorModel {
   Vec3 gravity_anomaly_n_mps2 = Vec3::Zero();
   Vec3 lever_arm_b_m = Vec3::Zero();
   double time_offset_s = 0.0;
+  Vec3 gnss_position_bias_n_m = Vec3::Zero();  // NED, added to the predicted GNSS position
 
   void clear_imu_terms() {
     gyro_bias_rad_s.setZero();

@@ -80,6 +80,7 @@ void NavFilter::rebuild_error_model() {
   ImuErrorModel& m = c_.model;
   m.clear_imu_terms();
   m.gravity_anomaly_n_mps2.setZero();
+  m.gnss_position_bias_n_m.setZero();
   m.lever_arm_b_m = opt_.lever_arm.init;  // used as given when lever_arm is not estimated
   m.time_offset_s = opt_.time_offset_init_s;
   for (const auto& b : layout_.blocks()) b.effect->apply(c_.x_eff.segment(b.offset - kNavDim, b.dim), m);
@@ -295,6 +296,7 @@ LinearizationPoint NavFilter::linearization_point() const {
   lp.f_b_mps2 = st.f_b_mps2;
   lp.a_n_mps2 = st.a_n_mps2;
   lp.lever_arm_b_m = c_.model.lever_arm_b_m;
+  lp.gnss_position_bias_n_m = c_.model.gnss_position_bias_n_m;
   lp.omega_in_n_rad_s = earth::omega_ie_n(c_.nav.pos.lat_rad) +
                         earth::omega_en_n(c_.nav.pos.lat_rad, c_.nav.pos.h_m, c_.nav.v_n_mps);
   lp.v_ant_n_mps = antenna_velocity_n(c_.nav, lp);

@@ -5,6 +5,7 @@
 #include "common/geo/earth_model.hpp"
 #include "common/io/input_error.hpp"
 #include "estimator/ins/alignment.hpp"
+#include "estimator/run/alignment_options_from.hpp"
 
 namespace ldv::est {
 namespace {
@@ -54,11 +55,35 @@ FilterOptions options_from_kfgins(const KfGinsConfig& cfg) {
   o.use_gnss_velocity = ldv_key<bool>(cfg, "use_gnss_velocity", o.use_gnss_velocity);
   o.zupt.enabled = ldv_key<bool>(cfg, "zupt", o.zupt.enabled);
   o.history_s = ldv_key<double>(cfg, "history_s", 0.0);  // offline: fixes are never late
+  // gnss_position_bias (used when the model includes it): sigma [m] as one number or [N, E, D], tau [s].
+  if (cfg.ldv.IsDefined() && !cfg.ldv.IsNull() && cfg.ldv["gnss_bias_sigma_m"]) {
+    const YAML::Node node = cfg.ldv["gnss_bias_sigma_m"];
+    Vec3 sigma;
+    if (node.IsSequence()) {
+      const auto v = ldv_key<std::vector<double>>(cfg, "gnss_bias_sigma_m", {});
+      if (v.size() != 3 || !(v[0] > 0 && v[1] > 0 && v[2] > 0))
+        throw InputError(cfg.config_path, node.Mark().line + 1,
+                         "key 'ldv.gnss_bias_sigma_m': expected a positive number or a list of 3 (N E D) [m]");
+      sigma = Vec3(v[0], v[1], v[2]);
+    } else {
+      const double s = ldv_key<double>(cfg, "gnss_bias_sigma_m", 0.0);
+      if (!(s > 0))
+        throw InputError(cfg.config_path, node.Mark().line + 1, "key 'ldv.gnss_bias_sigma_m': must be positive [m]");
+      sigma = Vec3::Constant(s);
+    }
+    o.gnss_position_bias.sigma = sigma;
+    o.gnss_position_bias.init_std = sigma;
+  }
+  o.gnss_position_bias.corr_time_s = ldv_key<double>(cfg, "gnss_bias_tau_s", o.gnss_position_bias.corr_time_s);
+  if (!(o.gnss_position_bias.corr_time_s > 0))
+    throw InputError(cfg.config_path, cfg.ldv["gnss_bias_tau_s"].Mark().line + 1,
+                     "key 'ldv.gnss_bias_tau_s': must be positive [s]");
   return o;
 }
 
 RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
-                          const KfGinsConfig& cfg, NavFilter& filter, const RunCallbacks& cb) {
+                          const KfGinsConfig& cfg, NavFilter& filter, const RunCallbacks& cb,
+                          const AlignmentOptions* alignment) {
   RunSummary sum;
   const double t0 = cfg.start_time_s, t1 = cfg.end_time_s < 0 ? 1e300 : cfg.end_time_s;
   auto first = std::lower_bound(imu.begin(), imu.end(), t0, [](const ImuIncrement& a, double t) { return a.t_s < t; });
@@ -81,12 +106,7 @@ RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vecto
     filter.initialize(s, sd);
     sum.initialisation = "given";
   } else {
-    AlignmentOptions ao;
-    const FilterOptions& fo = filter.options();
-    ao.gyro_bias_std_rad_s = fo.gyro_bias.init_std.maxCoeff();
-    ao.arw_rad_per_sqrt_s = fo.arw_rad_per_sqrt_s.maxCoeff();
-    ao.accel_bias_std_mps2 = fo.accel_bias.init_std.maxCoeff();
-    ao.lever_arm_b_m = fo.lever_arm.init;
+    const AlignmentOptions ao = alignment ? *alignment : alignment_options_from(filter.options());
     Aligner aligner(ao);
     for (; i < imu.size() && imu[i].t_s <= t1 && !aligner.aligned(); ++i) {
       aligner.add_imu(imu[i]);
@@ -94,7 +114,8 @@ RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vecto
     }
     if (!aligner.aligned())
       throw InputError(cfg.gnss_path, 0,
-                       "could not align: no static period with usable gyros and no GNSS speed above 2 m/s "
+                       "could not align: no static period with usable gyros and no GNSS speed above " +
+                           std::to_string(ao.speed_min_mps) + " m/s "
                        "(give initpos/initvel/initatt in the configuration)");
     filter.initialize(aligner.state(), aligner.std());
     sum.initialisation = aligner.method();

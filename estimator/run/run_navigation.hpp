@@ -7,13 +7,15 @@
 #include "common/formats/kfgins_config.hpp"
 #include "common/formats/nav_types.hpp"
 #include "estimator/filter/nav_filter.hpp"
+#include "estimator/ins/alignment.hpp"
 
 namespace ldv::est {
 
 // KF-GINS configuration -> filter options: imunoise (arw, vrw, gbstd, abstd, gsstd, asstd, corrtime),
 // init biases/scales and their std, antlever; plus the optional `ldv:` section keys
 //   model, add [list], drop [list], cov_period_s, gate_probability, use_gnss_velocity, zupt (bool),
-//   history_s. Throws InputError (file, key) on a wrong type.
+//   history_s, gnss_bias_sigma_m (number or [N, E, D]), gnss_bias_tau_s. Throws InputError (file, key)
+//   on a wrong type.
 FilterOptions options_from_kfgins(const KfGinsConfig& cfg);
 
 struct RunCallbacks {
@@ -33,8 +35,10 @@ struct RunSummary {
 // Runs over [start_time, end_time] of the inputs (end < 0: to the end). The initial state is taken from
 // cfg.init_pos/init_vel/init_rpy when all three are given (at the first IMU epoch >= start time), else
 // the data are aligned (alignment.hpp). Feeds each fix before the IMU reaches it, so it is applied at its
-// exact epoch. Throws InputError if alignment never succeeds.
+// exact epoch. Throws InputError if alignment never succeeds. `alignment`: settings of the alignment without
+// a given state (default: alignment_options_from(filter.options())).
 RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
-                          const KfGinsConfig& cfg, NavFilter& filter, const RunCallbacks& callbacks);
+                          const KfGinsConfig& cfg, NavFilter& filter, const RunCallbacks& callbacks,
+                          const AlignmentOptions* alignment = nullptr);
 
 }  // namespace ldv::est

@@ -18,4 +18,10 @@ inline void add_effect_columns(const StateLayout& layout, const LinearizationPoi
     if (b.effect->enters(m.kind)) b.effect->measurement_jacobian(m.kind, lp, m.H.middleCols(b.offset, b.dim));
 }
 
+// Lets each block entering this measurement take its part out of the noise R (call after setting R).
+inline void adjust_effect_noise(const StateLayout& layout, Measurement& m) {
+  for (const auto& b : layout.blocks())
+    if (b.effect->enters(m.kind)) b.effect->adjust_measurement_noise(m.kind, m.R);
+}
+
 }  // namespace ldv::est

@@ -8,7 +8,11 @@
 namespace ldv {
 
 FusionEngine::FusionEngine(const est::FilterOptions& fo, const est::AlignmentOptions& ao, double align_wait_s)
-    : filter_(fo), aligner_(ao), align_wait_s_(align_wait_s) {}
+    : filter_(fo),
+      aligner_(ao),
+      speed_min_mps_(ao.speed_min_mps),
+      cog_yaw_std_rad_(ao.cog_yaw_std_rad),
+      align_wait_s_(align_wait_s) {}
 
 void FusionEngine::on_imu(const ImuIncrement& imu, int week, double arrival_s, std::vector<FusionOutput>& out) {
   if (filter_.initialized()) {
@@ -75,6 +79,13 @@ bool FusionEngine::try_warm_start(const ImuIncrement& imu) {
   est::NavState s = w.state;
   s.t_s = imu.t_s - imu.dt_s;
   const Vec3 v_n = fix.has_velocity ? fix.vel_n_mps : w.state.v_n_mps;
+  const Vec3& v_saved = w.state.v_n_mps;
+  const bool course_turned =
+      fix.has_velocity && v_n.head<2>().norm() > speed_min_mps_ && v_saved.head<2>().norm() > speed_min_mps_;
+  if (course_turned) {
+    const double turn = std::remainder(std::atan2(v_n.y(), v_n.x()) - std::atan2(v_saved.y(), v_saved.x()), 2.0 * M_PI);
+    s.q_b_n = (Quat(Eigen::AngleAxisd(turn, Vec3::UnitZ())) * s.q_b_n).normalized();
+  }
   // Antenna fix -> IMU centre, then carried to the start of this sample with the velocity.
   const Vec3 lever_n = s.C_b_n() * filter_.options().lever_arm.init;
   s.pos = earth::offset_ned(fix.pos, -lever_n + v_n * (s.t_s - fix.t_s));
@@ -82,8 +93,10 @@ bool FusionEngine::try_warm_start(const ImuIncrement& imu) {
   est::NavStd sd;
   sd.pos_ned_m = 2.0 * fix.pos_std_ned_m + Vec3::Constant(0.05);
   sd.vel_n_mps = fix.has_velocity ? Vec3(2.0 * fix.vel_std_n_mps + Vec3::Constant(0.05)) : Vec3::Constant(2.0);
-  // Attitude kept through a restart gap of a few seconds: heading may have turned meanwhile.
+  // Attitude kept through a restart gap of a few seconds: heading may have turned meanwhile. Moving
+  // then and now: the saved attitude turned by the change of the course over ground.
   sd.att_rad = w.std.att_rad + Vec3(0.5, 0.5, 5.0) * kDegToRad;
+  if (course_turned) sd.att_rad.z() = w.std.att_rad.z() + cog_yaw_std_rad_;
   start_navigation(s, sd, "warm start");
   return true;
 }

@@ -7,7 +7,9 @@
 //  - navigation: late GNSS fixes go to NavFilter::add_gnss, which re-processes its IMU history, so
 //    a fix is applied at its true epoch and the live result equals the offline one;
 //  - warm start: after a restart, a recent saved state (attitude, velocity) plus the first GNSS fix
-//    restart navigation at once instead of waiting for a static period.
+//    restart navigation at once instead of waiting for a static period. When the vehicle was and is
+//    moving, the heading is carried through the restart gap by the change of the GNSS course over
+//    ground (a land vehicle turns with its velocity), so a restart in the middle of a turn works.
 #include <deque>
 #include <optional>
 #include <vector>
@@ -60,6 +62,8 @@ class FusionEngine {
 
   est::NavFilter filter_;
   est::Aligner aligner_;
+  double speed_min_mps_;     // course over ground usable above this (AlignmentOptions)
+  double cog_yaw_std_rad_;   // heading uncertainty from the course over ground
   double align_wait_s_;
   std::deque<QueuedImu> imu_queue_;
   std::deque<GnssFix> gnss_queue_;  // fixes not yet given to the aligner

@@ -81,6 +81,8 @@ int main(int argc, char** argv) {
         if (r.t_s <= last_innovation_t && r.kind == ldv::est::MeasurementKind::kGnssPosition) continue;
         if (r.replayed && r.t_s <= last_innovation_t) continue;  // already published before a rewind
         rt.bus().publish("NAV_INNOVATION", ldv::innovation_message(r, last_week, innovation_seq++));
+        // A GNSS solution the innovation gate refused is rejected input (service_status_t.malformed).
+        if (!r.accepted) ++rt.counters().malformed;
         last_innovation_t = std::max(last_innovation_t, r.t_s);
       }
       if (engine.navigating() && !announced) {

@@ -1,1 +1,84 @@
+// Given simulated drives with exactly one hidden effect (or none), when `ldv diagnose` runs with the
+// model under test, then the hidden effect is named, confirmed, estimated, and adding it removes the
+// excess error; with none, nothing is added. (The many-seed version: test_diagnose_montecarlo.)
 #include <gtest/gtest.h>
+
+#include "tests/diagnose/trial.hpp"
+#include "toolbox/diagnose/report_json.hpp"
+
+namespace ldv::diag {
+namespace {
+
+using testing::Outcome;
+using testing::Trial;
+
+void expect_found_and_fixed(const Trial& t) {
+  const Outcome o = testing::run_trial(t, true);
+  EXPECT_TRUE(o.ranked_first) << t.effect << ": ranked first was " << o.first;
+  EXPECT_TRUE(o.verdict_has) << t.effect;
+  EXPECT_GE(o.excess_removed(), 0.8) << t.effect << ": RMS error " << o.err_base_m << " m -> " << o.err_after_m
+                                      << " m (known model " << o.err_ref_m << " m)";
+}
+
+}  // namespace
+
+TEST(DiagnoseSim, NoHiddenEffectAddsNothing) {
+  for (const char* grade : {"hg1700", "3dm-gx2"})
+    for (uint64_t seed : {11u, 12u, 13u}) {
+      const Outcome o = testing::run_trial({grade, "", "kfgins21", seed});
+      EXPECT_FALSE(o.verdict_any) << grade << " seed " << seed << ": top candidate " << o.first;
+    }
+}
+
+TEST(DiagnoseSim, HiddenLeverArmIsFoundEstimatedAndRemovesTheError) {
+  expect_found_and_fixed({"hg1700", "lever_arm=0.5,-0.3,-1.2", "kfgins21", 21});
+}
+
+TEST(DiagnoseSim, HiddenTimeOffsetIsFoundAndRemovesTheError) {
+  expect_found_and_fixed({"hg1700", "time_offset=0.05", "kfgins21", 22});
+}
+
+TEST(DiagnoseSim, HiddenGyroScaleIsFoundByAnIns15Model) {
+  // kfgins21 already estimates gyro_scale: the model under test is ins15.
+  expect_found_and_fixed({"hg1700", "gyro_scale=1500,-1000,2000", "ins15", 23});
+}
+
+TEST(DiagnoseSim, MemsLeverArmIsRankedFirst) {
+  const Outcome o = testing::run_trial({"3dm-gx2", "lever_arm=0.5,-0.3,-1.2", "kfgins21", 24});
+  EXPECT_TRUE(o.ranked_first) << o.first;
+  EXPECT_TRUE(o.verdict_has);
+}
+
+TEST(DiagnoseSim, LeverArmEstimateAndJsonContract) {
+  testing::SimCase c;
+  c.effect = "lever_arm=0.5,-0.3,-1.2";
+  c.seed = 25;
+  c.duration_s = 600.0;
+  const sim::SimResult r = testing::simulate(c);
+  const Diagnosis d = diagnose(testing::inputs(r), testing::options(r, "kfgins21"));
+  ASSERT_EQ(d.add.size(), 1u);
+  EXPECT_EQ(d.add[0], "lever_arm");
+  ASSERT_EQ(d.added_estimates.size(), 1u);
+  EXPECT_TRUE(d.added_estimates[0].value_si.isApprox(Eigen::Vector3d(0.5, -0.3, -1.2), 0.05));
+  const CandidateScore& top = d.steps.front().screening.ranked.front();
+  EXPECT_EQ(top.name, "lever_arm");
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(top.estimate_si(i), r.injected_effects.at("lever_arm")[i], 0.05);
+  const std::string json = diagnosis_json(d);
+  for (const char* key : {"\"model\": \"kfgins21\"", "\"consistent\": false", "\"candidates\": [", "\"effect\": \"lever_arm\"",
+                          "\"statistic\": ", "\"p_value\": ", "\"estimate\": [", "\"sigma\": [", "\"group\": [",
+                          "\"verdict\": {\"add\": [\"lever_arm\"]"})
+    EXPECT_NE(json.find(key), std::string::npos) << key;
+}
+
+TEST(DiagnoseSim, ScaleFactorsAreUntestableWhenStandingStill) {
+  testing::SimCase c;
+  c.scenario = "static";
+  c.duration_s = 300.0;
+  const sim::SimResult r = testing::simulate(c);
+  const Diagnosis d = diagnose(testing::inputs(r), testing::options(r, "ins15"));
+  for (const CandidateScore& s : d.steps.front().screening.ranked)
+    if (s.name == "gyro_scale" || s.name == "lever_arm" || s.name == "time_offset") EXPECT_FALSE(s.testable) << s.name;
+  EXPECT_TRUE(d.add.empty());
+}
+
+}  // namespace ldv::diag

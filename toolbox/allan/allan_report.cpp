@@ -158,7 +158,8 @@ void write_json(const std::string& path, const std::string& input, const std::ve
       }
       o << "}";
       o << ",\n      \"fit\": {\"chi2\": " << num(f.chi2) << ", \"points\": " << f.points
-        << ", \"covariance_inflation\": " << num(f.covariance_inflation) << "}";
+        << ", \"covariance_inflation\": " << num(f.covariance_inflation)
+        << ", \"gls\": " << (f.gls ? "true" : "false") << "}";
       o << ",\n      \"misfit\": [";
       for (size_t i = 0; i < f.misfit.size(); ++i) {
         const DecadeMisfit& m = f.misfit[i];

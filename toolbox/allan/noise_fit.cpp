@@ -3,9 +3,11 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 
+#include "toolbox/allan/avar_covariance.hpp"
 #include "toolbox/allan/chi_square.hpp"
 
 namespace ldv::allan {
@@ -13,6 +15,9 @@ namespace {
 
 struct Data {
   std::vector<double> tau, avar, edf;
+  std::vector<long> m;   // averaging factors (for the overlapping-estimate covariance)
+  double tau0 = 0.0;
+  long n_phase = 0;      // > 0 when the points are one overlapping Allan deviation (GLS possible)
 };
 
 struct Basis {
@@ -23,7 +28,7 @@ struct Basis {
 struct LinearFit {
   std::vector<double> c;  // per basis term
   double chi2 = std::numeric_limits<double>::infinity();
-  std::vector<double> weights;  // final weights
+  Eigen::MatrixXd wh;  // final metric: chi2 = |wh (data - model)|^2
 };
 
 double model_at(const Basis& b, const std::vector<double>& c, double tau) {
@@ -32,9 +37,8 @@ double model_at(const Basis& b, const std::vector<double>& c, double tau) {
   return m;
 }
 
-// Weighted least squares restricted to `active` (bit mask); empty result when singular.
-bool solve_subset(const Eigen::MatrixXd& A, const Eigen::VectorXd& y, const Eigen::VectorXd& w, unsigned active,
-                  Eigen::VectorXd& c) {
+// Least squares of the whitened system restricted to `active` (bit mask); false when singular.
+bool solve_subset(const Eigen::MatrixXd& A, const Eigen::VectorXd& y, unsigned active, Eigen::VectorXd& c) {
   const int p = static_cast<int>(A.cols());
   std::vector<int> idx;
   for (int k = 0; k < p; ++k) if (active & (1u << k)) idx.push_back(k);
@@ -45,35 +49,42 @@ bool solve_subset(const Eigen::MatrixXd& A, const Eigen::VectorXd& y, const Eige
   // Column scaling: the basis functions span many orders of magnitude in tau.
   Eigen::VectorXd scale(idx.size());
   for (size_t j = 0; j < idx.size(); ++j) {
-    scale(j) = std::sqrt((As.col(j).array().square() * w.array()).sum());
+    scale(j) = As.col(j).norm();
     if (!(scale(j) > 0)) return false;
     As.col(j) /= scale(j);
   }
-  const Eigen::MatrixXd N = As.transpose() * w.asDiagonal() * As;
+  const Eigen::MatrixXd N = As.transpose() * As;
   Eigen::LDLT<Eigen::MatrixXd> ldlt(N);
   if (ldlt.info() != Eigen::Success || ldlt.rcond() < 1e-14) return false;
-  const Eigen::VectorXd cs = ldlt.solve(As.transpose() * (w.asDiagonal() * y));
+  const Eigen::VectorXd cs = ldlt.solve(As.transpose() * y);
   for (size_t j = 0; j < idx.size(); ++j) c(idx[j]) = cs(j) / scale(j);
   return true;
 }
 
-// Non-negative weighted least squares by enumerating the passive sets (at most 2^6 for our
-// handful of terms): the optimum is the best subset solution that is non-negative.
-LinearFit nnls(const Basis& b, const Data& d, const Eigen::VectorXd& w) {
+Eigen::MatrixXd design(const Basis& b, const Data& d) {
   const int n = static_cast<int>(d.tau.size()), p = static_cast<int>(b.terms.size());
   Eigen::MatrixXd A(n, p);
-  Eigen::VectorXd y(n);
   for (int i = 0; i < n; ++i) {
-    y(i) = d.avar[i];
     for (int k = 0; k < p; ++k) A(i, k) = term_avar(b.terms[k], d.tau[i], b.shapes[k]);
   }
+  return A;
+}
+
+// Non-negative least squares in the metric chi2 = |Wh (y - A c)|^2 (Wh = diag(sqrt(w)) for
+// independent points, L^-1 of the covariance C = L L^T for GLS), by enumerating the passive sets
+// (at most 2^6 for our handful of terms): the optimum is the best subset solution that is
+// non-negative.
+LinearFit nnls(const Basis& b, const Data& d, const Eigen::MatrixXd& Wh) {
+  const int n = static_cast<int>(d.tau.size()), p = static_cast<int>(b.terms.size());
+  const Eigen::MatrixXd A = Wh * design(b, d);
+  const Eigen::VectorXd y = Wh * Eigen::Map<const Eigen::VectorXd>(d.avar.data(), n);
   LinearFit best;
   best.c.assign(p, 0.0);
   for (unsigned mask = 0; mask < (1u << p); ++mask) {
     Eigen::VectorXd c;
-    if (!solve_subset(A, y, w, mask, c)) continue;
+    if (!solve_subset(A, y, mask, c)) continue;
     if ((c.array() < 0).any()) continue;
-    const double chi2 = ((A * c - y).array().square() * w.array()).sum();
+    const double chi2 = (A * c - y).squaredNorm();
     if (chi2 < best.chi2) {
       best.chi2 = chi2;
       best.c.assign(c.data(), c.data() + p);
@@ -82,14 +93,14 @@ LinearFit nnls(const Basis& b, const Data& d, const Eigen::VectorXd& w) {
   return best;
 }
 
-// Iteratively re-weighted: var(avar_i) = 2 model_i^2 / edf_i.
+// Iteratively re-weighted, points taken as independent: var(avar_i) = 2 model_i^2 / edf_i.
 LinearFit irls(const Basis& b, const Data& d) {
   const int n = static_cast<int>(d.tau.size());
   Eigen::VectorXd w(n);
   for (int i = 0; i < n; ++i) w(i) = d.edf[i] / (2.0 * d.avar[i] * d.avar[i]);
   LinearFit fit;
   for (int it = 0; it < 8; ++it) {
-    fit = nnls(b, d, w);
+    fit = nnls(b, d, Eigen::MatrixXd(w.cwiseSqrt().asDiagonal()));
     for (int i = 0; i < n; ++i) {
       // Floor the model at a tenth of the data so a momentarily absent term cannot blow a weight up.
       const double m = std::max(model_at(b, fit.c, d.tau[i]), 0.1 * d.avar[i]);
@@ -98,16 +109,18 @@ LinearFit irls(const Basis& b, const Data& d) {
   }
   fit.chi2 = 0.0;
   for (int i = 0; i < n; ++i) fit.chi2 += w(i) * std::pow(d.avar[i] - model_at(b, fit.c, d.tau[i]), 2);
-  fit.weights.assign(w.data(), w.data() + n);
+  fit.wh = w.cwiseSqrt().asDiagonal();
   return fit;
 }
 
+using Solver = std::function<LinearFit(const Basis&)>;
+
 // Best fit over a log grid of the shape parameter of `t` (GM time constant or sine frequency),
 // refined by golden-section search in log(shape).
-LinearFit fit_with_shape(Basis b, int shaped, const Data& d, double lo, double hi) {
+LinearFit fit_with_shape(Basis b, int shaped, const Solver& solve, double lo, double hi) {
   auto chi2_at = [&](double log_s) {
     b.shapes[shaped] = std::exp(log_s);
-    return irls(b, d).chi2;
+    return solve(b).chi2;
   };
   const int grid = 16;
   double best_ls = std::log(lo), best_chi2 = std::numeric_limits<double>::infinity();
@@ -124,10 +137,10 @@ LinearFit fit_with_shape(Basis b, int shaped, const Data& d, double lo, double h
     else a = x1, x1 = x2, f1 = f2, x2 = a + phi * (z - a), f2 = chi2_at(x2);
   }
   b.shapes[shaped] = std::exp(f1 < f2 ? x1 : x2);
-  LinearFit f = irls(b, d);
+  LinearFit f = solve(b);
   if (f.chi2 > best_chi2) {  // the grid point was better (multi-modal chi2)
     b.shapes[shaped] = std::exp(best_ls);
-    f = irls(b, d);
+    f = solve(b);
   }
   f.c.push_back(b.shapes[shaped]);  // the shape rides along at the end
   return f;
@@ -138,26 +151,113 @@ struct Model {
   LinearFit fit;
 };
 
-Model fit_model(std::vector<ModelTerm> terms, const Data& d) {
-  Model m;
-  m.basis.terms = terms;
-  m.basis.shapes.assign(terms.size(), 0.0);
-  const double tmin = d.tau.front(), tmax = d.tau.back();
+int shaped_index(const std::vector<ModelTerm>& terms) {
   int shaped = -1;
   for (size_t k = 0; k < terms.size(); ++k) {
     if (terms[k] == ModelTerm::kGaussMarkov || terms[k] == ModelTerm::kSinusoid) shaped = static_cast<int>(k);
   }
+  return shaped;
+}
+
+Model fit_model(std::vector<ModelTerm> terms, const Data& d, const Solver& solve) {
+  Model m;
+  m.basis.terms = terms;
+  m.basis.shapes.assign(terms.size(), 0.0);
+  const double tmin = d.tau.front(), tmax = d.tau.back();
+  const int shaped = shaped_index(terms);
   if (shaped < 0) {
-    m.fit = irls(m.basis, d);
+    m.fit = solve(m.basis);
     return m;
   }
   // GM: the hump sits at 1.89 T, so T from tau_min/2 to tau_max/2 covers every visible hump.
   // Sinusoid: the first peak of its Allan deviation is at tau = 0.371 / f0.
   const bool gm = terms[shaped] == ModelTerm::kGaussMarkov;
   const double lo = gm ? 0.5 * tmin : 0.371 / tmax, hi = gm ? 0.5 * tmax : 0.371 / tmin;
-  m.fit = fit_with_shape(m.basis, shaped, d, lo, hi);
+  m.fit = fit_with_shape(m.basis, shaped, solve, lo, hi);
   m.basis.shapes[shaped] = m.fit.c.back();
   m.fit.c.pop_back();
+  return m;
+}
+
+Model fit_model(std::vector<ModelTerm> terms, const Data& d) {
+  return fit_model(std::move(terms), d, [&](const Basis& b) { return irls(b, d); });
+}
+
+// The noise levels of a fitted model, for the covariance of the Allan variance estimates.
+NoiseLevels levels_of(const Model& m) {
+  NoiseLevels lv;
+  for (size_t k = 0; k < m.basis.terms.size(); ++k) {
+    const double v = std::sqrt(std::max(0.0, m.fit.c[k]));
+    switch (m.basis.terms[k]) {
+      case ModelTerm::kQ: lv.q = v; break;
+      case ModelTerm::kN: lv.n = v; break;
+      case ModelTerm::kB: lv.b = v; break;
+      case ModelTerm::kK: lv.k = v; break;
+      case ModelTerm::kGaussMarkov: lv.gm_sigma = v, lv.gm_t_s = m.basis.shapes[k]; break;
+      case ModelTerm::kR: lv.r = v; break;
+      default: break;  // sinusoid: not in the covariance
+    }
+  }
+  return lv;
+}
+
+// Whitening matrix L^-1 of the covariance C = L L^T of the overlapping Allan variance estimates
+// under the model `m`. Where the model explains less than a tenth of the data (a term momentarily
+// absent), the variance is scaled up to that of a tenth of the data, as the IRLS weights do.
+bool gls_whitener(const Model& m, const Data& d, Eigen::MatrixXd& wh) {
+  const int n = static_cast<int>(d.tau.size());
+  const std::vector<double> cv = oavar_covariance(levels_of(m), d.m, d.tau0, d.n_phase);
+  Eigen::MatrixXd C = Eigen::Map<const Eigen::MatrixXd>(cv.data(), n, n);
+  Eigen::VectorXd s(n);
+  for (int i = 0; i < n; ++i) {
+    const double mod = model_at(m.basis, m.fit.c, d.tau[i]);
+    s(i) = mod > 0 ? std::max(1.0, 0.1 * d.avar[i] / mod) : 1.0;
+    if (!(C(i, i) > 0)) return false;
+  }
+  C = s.asDiagonal() * C * s.asDiagonal();
+  // A relative jitter guards the factorization of strongly correlated neighbouring taus.
+  for (double jitter : {1e-10, 1e-8, 1e-6, 1e-4}) {
+    Eigen::MatrixXd Cj = C;
+    Cj.diagonal() *= 1.0 + jitter;
+    Eigen::LLT<Eigen::MatrixXd> llt(Cj);
+    if (llt.info() != Eigen::Success) continue;
+    wh = llt.matrixL().solve(Eigen::MatrixXd::Identity(n, n));
+    return wh.allFinite();
+  }
+  return false;
+}
+
+// Generalized least squares: the metric is the full covariance of the overlapping estimates,
+// evaluated at the model being fitted (re-evaluated a few times, like the IRLS weights).
+Model fit_model_gls(const std::vector<ModelTerm>& terms, const Data& d, const Model& start, bool* ok) {
+  Model m = start;
+  *ok = false;
+  for (int it = 0; it < 4; ++it) {
+    Eigen::MatrixXd wh;
+    if (!gls_whitener(m, d, wh)) break;
+    Model next = fit_model(terms, d, [&](const Basis& b) {
+      LinearFit f = nnls(b, d, wh);
+      f.wh = wh;
+      return f;
+    });
+    double change = 0.0;
+    for (size_t k = 0; k < terms.size(); ++k) {
+      const double a = std::sqrt(std::max(0.0, m.fit.c[k])), b = std::sqrt(std::max(0.0, next.fit.c[k]));
+      if (a + b > 0) change = std::max(change, std::fabs(a - b) / (a + b));
+    }
+    m = std::move(next);
+    *ok = true;
+    if (change < 1e-3 && it > 0) break;
+  }
+  if (*ok) {  // the metric at the final model
+    Eigen::MatrixXd wh;
+    if (gls_whitener(m, d, wh)) {
+      m.fit.wh = wh;
+      const Eigen::VectorXd r = Eigen::Map<const Eigen::VectorXd>(d.avar.data(), d.tau.size()) -
+                                design(m.basis, d) * Eigen::Map<const Eigen::VectorXd>(m.fit.c.data(), m.fit.c.size());
+      m.fit.chi2 = (wh * r).squaredNorm();
+    }
+  }
   return m;
 }
 
@@ -177,7 +277,7 @@ std::vector<ModelTerm> terms_of(const FitOptions& o) {
 // A shaped term (GM, sinusoid) with a non-zero coefficient adds its shape parameter as a last
 // column (Gauss-Newton linearisation, central difference in log(shape)), so the uncertainty of T
 // spreads into the coefficients it trades off against.
-Eigen::MatrixXd covariance(const Basis& b, const std::vector<int>& idx, const Data& d, const std::vector<double>& w,
+Eigen::MatrixXd covariance(const Basis& b, const std::vector<int>& idx, const Data& d, const Eigen::MatrixXd& wh,
                            const std::vector<double>& c) {
   const int n = static_cast<int>(d.tau.size());
   int shaped = -1;
@@ -194,13 +294,13 @@ Eigen::MatrixXd covariance(const Basis& b, const std::vector<int>& idx, const Da
                                  term_avar(b.terms[shaped], d.tau[i], s * (1 - h))) / (2 * h);
     }
   }
+  A = wh * A;
   Eigen::VectorXd scale(q);
   for (int j = 0; j < q; ++j) {
     scale(j) = A.col(j).norm();
     if (scale(j) > 0) A.col(j) /= scale(j);
   }
-  const Eigen::VectorXd wv = Eigen::Map<const Eigen::VectorXd>(w.data(), n);
-  const Eigen::MatrixXd N = A.transpose() * wv.asDiagonal() * A;
+  const Eigen::MatrixXd N = A.transpose() * A;
   Eigen::MatrixXd C = N.completeOrthogonalDecomposition().pseudoInverse();
   return scale.cwiseInverse().asDiagonal() * C * scale.cwiseInverse().asDiagonal();
 }
@@ -236,25 +336,47 @@ NoiseFit fit_noise_model(const std::vector<StabilityPoint>& pts, const FitOption
       d.tau.push_back(p.point.tau_s);
       d.avar.push_back(p.point.dev * p.point.dev);
       d.edf.push_back(p.edf);
+      d.m.push_back(p.point.m);
     }
   }
   if (d.tau.size() < 3) throw std::invalid_argument("noise fit needs at least 3 deviation points with degrees of freedom");
   NoiseFit out;
   out.points = static_cast<int>(d.tau.size());
   const std::vector<ModelTerm> terms = terms_of(opt);
-  const Model model = fit_model(terms, d);
-  out.chi2 = model.fit.chi2;
+  Model model = fit_model(terms, d);
 
-  // Overlapping estimates at neighbouring taus share most of their data, so the weighted LS
-  // covariance (which assumes independent points) is optimistic. We count about one independent
-  // point per octave of tau: the covariance is inflated by the number of points per octave.
-  const double octaves = std::max(1.0, std::log2(d.tau.back() / d.tau.front()));
-  out.covariance_inflation = std::max(1.0, d.tau.size() / octaves);
+  // Generalized least squares when the points are one overlapping Allan deviation (N - 2m terms
+  // at every m of one series): the full covariance of the estimates across tau replaces the
+  // independent-points weights, so neighbouring taus that share their data count once.
+  bool gls = opt.gls;
+  for (size_t i = 0; gls && i < pts.size(); ++i) {
+    const DeviationPoint& q = pts[i].point;
+    const long n_phase = q.n_terms + 2 * q.m;
+    if (q.m < 1 || q.n_terms < 1 || (d.n_phase > 0 && n_phase != d.n_phase)) gls = false;
+    d.n_phase = n_phase;
+  }
+  if (gls) {
+    d.tau0 = d.tau.front() / static_cast<double>(d.m.front());
+    bool ok = false;
+    Model g = fit_model_gls(terms, d, model, &ok);
+    if (ok) model = std::move(g);
+    gls = ok;
+  }
+  out.chi2 = model.fit.chi2;
+  out.gls = gls;
+
+  // Without GLS (points of another kind): the weighted LS covariance assumes independent points,
+  // which is optimistic for overlapping estimates; about one independent point per octave of tau
+  // is counted, i.e. the covariance is inflated by the number of points per octave.
+  if (!gls) {
+    const double octaves = std::max(1.0, std::log2(d.tau.back() / d.tau.front()));
+    out.covariance_inflation = std::max(1.0, d.tau.size() / octaves);
+  }
 
   const double z = normal_quantile(0.5 + 0.5 * opt.interval_confidence);
   std::vector<int> active;
   for (size_t k = 0; k < terms.size(); ++k) if (model.fit.c[k] > 0) active.push_back(static_cast<int>(k));
-  const Eigen::MatrixXd cov_active = covariance(model.basis, active, d, model.fit.weights, model.fit.c) * out.covariance_inflation;
+  const Eigen::MatrixXd cov_active = covariance(model.basis, active, d, model.fit.wh, model.fit.c) * out.covariance_inflation;
   for (size_t k = 0; k < terms.size(); ++k) {
     TermEstimate& t = out[terms[k]];
     t.in_model = true;
@@ -267,7 +389,7 @@ NoiseFit fit_noise_model(const std::vector<StabilityPoint>& pts, const FitOption
     } else {  // at the bound: its uncertainty as if it were free, next to the active terms
       std::vector<int> with = active;
       with.push_back(static_cast<int>(k));
-      var_c = covariance(model.basis, with, d, model.fit.weights, model.fit.c)(with.size() - 1, with.size() - 1) *
+      var_c = covariance(model.basis, with, d, model.fit.wh, model.fit.c)(with.size() - 1, with.size() - 1) *
               out.covariance_inflation;
     }
     const double c = model.fit.c[k], sc = std::sqrt(std::max(var_c, 0.0));
@@ -275,8 +397,17 @@ NoiseFit fit_noise_model(const std::vector<StabilityPoint>& pts, const FitOption
     // The coefficient enters squared: intervals are taken on c and mapped through the square root,
     // which stays meaningful at c = 0 (where the delta method would divide by zero).
     t.sigma = 0.5 * (std::sqrt(c + sc) - std::sqrt(std::max(0.0, c - sc)));
-    t.lo = std::sqrt(std::max(0.0, c - z * sc));
-    t.hi = std::sqrt(c + z * sc);
+    if (c > 2.0 * sc) {
+      // A clearly present term: its variance-like coefficient has a spread proportional to itself
+      // (a chi-square-like estimate), so the interval is symmetric in ln c, not in c; a low
+      // estimate then still reaches up to the truth (a Wald interval in c would not).
+      const double s_ln = sc / c;
+      t.lo = std::sqrt(c * std::exp(-z * s_ln));
+      t.hi = std::sqrt(c * std::exp(z * s_ln));
+    } else {
+      t.lo = std::sqrt(std::max(0.0, c - z * sc));
+      t.hi = std::sqrt(c + z * sc);
+    }
     bool dominant = false;
     for (double tau : d.tau) {
       const double part = c * term_avar(terms[k], tau, t.shape);

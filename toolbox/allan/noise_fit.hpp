@@ -22,6 +22,9 @@ struct FitOptions {
   bool gauss_markov = false;  // model the bias as Gauss-Markov (sigma, T) in place of the flat B
   bool sinusoid = false;      // add a sinusoid (amplitude, frequency)
   double interval_confidence = 0.95;
+  // Generalized least squares with the full covariance of overlapping Allan variance estimates
+  // (avar_covariance.hpp) when the points allow it; false: independent-points weights (+ inflation).
+  bool gls = true;
 };
 
 struct TermEstimate {
@@ -53,7 +56,8 @@ struct NoiseFit {
   double b_tau_s = 0.0;           // tau of the minimum (flat part) of the measured deviation
   double chi2 = 0.0;              // weighted residual sum of squares
   int points = 0;
-  double covariance_inflation = 1.0;  // for correlated overlapping estimates (see noise_fit.cpp)
+  double covariance_inflation = 1.0;  // 1 with GLS; else for correlated overlapping estimates (noise_fit.cpp)
+  bool gls = false;               // fitted by generalized least squares (full covariance across tau)
   std::array<SlopeLine, 5> slope_lines;  // Q N B K R
   std::vector<DecadeMisfit> misfit;
 

@@ -75,9 +75,10 @@ class DriftTracker {
   double next_eval_s_ = -1e300, next_curve_s_ = 0.0;
 };
 
-// An outage from its checkpoint: the IMU after the checkpoint epoch, no GNSS.
-OutageResult run_from_checkpoint(const FilterCheckpoint& cp, const OutageWindow& w, const std::vector<ImuIncrement>& imu,
-                                 const NavSeries& reference, const OutageRunOptions& o) {
+}  // namespace
+
+OutageResult run_outage_segment(const FilterCheckpoint& cp, const OutageWindow& w, const std::vector<ImuIncrement>& imu,
+                                const NavSeries& reference, const OutageRunOptions& o) {
   std::unique_ptr<est::NavFilter> f = restore_filter(cp);
   DriftTracker tracker(w, reference, o);
   const double t_stop = w.start_s + w.length_s + kEpochTolerance_s;
@@ -89,6 +90,8 @@ OutageResult run_from_checkpoint(const FilterCheckpoint& cp, const OutageWindow&
   }
   return tracker.finish(*f);
 }
+
+namespace {
 
 // The reference for the checkpoint: the whole run again with this outage's fixes removed.
 OutageResult rerun_with_outage(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
@@ -189,7 +192,7 @@ OutageRun run_outages(const std::vector<ImuIncrement>& imu, const std::vector<Gn
     if (o.exact_rerun)
       results[i] = rerun_with_outage(imu, gnss, cfg, fo, w, reference, o);
     else if (c < checkpoints.size())
-      results[i] = run_from_checkpoint(checkpoints[c], w, imu, reference, o);
+      results[i] = run_outage_segment(checkpoints[c], w, imu, reference, o);
     else
       results[i].window = w;  // the filter never reached the start (cannot happen with a sane plan)
     if (!truth.empty()) {

@@ -56,6 +56,13 @@ struct OutageRun {
   int threads = 1;
 };
 
+struct FilterCheckpoint;
+// One outage from a checkpoint: the IMU samples after the checkpoint epoch up to start + length, no
+// GNSS, drift against `reference` (also used directly by tests: a checkpoint made from the truth state).
+OutageResult run_outage_segment(const FilterCheckpoint& checkpoint, const OutageWindow& window,
+                                const std::vector<ImuIncrement>& imu, const NavSeries& reference,
+                                const OutageRunOptions& options);
+
 // `truth` may be empty (real data). Throws InputError / std::invalid_argument on unusable inputs.
 OutageRun run_outages(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss, const KfGinsConfig& cfg,
                       const est::FilterOptions& filter_options, const NavSeries& truth, const OutageRunOptions& options);

@@ -22,7 +22,7 @@ const Screenable kScreenable[] = {
     {"accel_scale", 0.02},
     {"gyro_misalignment", 0.01},              // rad (2000 arcsec)
     {"accel_misalignment", 0.01},
-    {"g_sensitivity", 200.0 * kDegH / 9.80665},  // 200 deg/h/g
+    {"g_sensitivity", 2000.0 * kDegH / 9.80665},  // 2000 deg/h/g (MEMS: ~0.1 deg/s/g)
     {"gravity_anomaly", 2e-3},                // 200 mGal
     {"gyro_bias", 1000.0 * kDegH},            // only when dropped from the model
     {"accel_bias", 0.1},
@@ -76,9 +76,15 @@ CandidateSet make_candidates(const est::FilterOptions& options, const std::vecto
     set.columns += c.dim;
     set.candidates.push_back(std::move(c));
   }
-  for (const char* name : {"gyro_moving_bias", "accel_moving_bias"})
-    if (std::find(model_effects.begin(), model_effects.end(), name) == model_effects.end())
-      set.not_screened.push_back({name, "stochastic (Gauss-Markov / random walk / ramp): see the NIS, whiteness and ldv allan"});
+  // Every other registry block is a stochastic process, not a constant: the model check's NIS and
+  // whiteness (and `ldv allan`) speak for it.
+  for (const auto& entry : reg.entries) {
+    const std::string name = entry.name;
+    const bool screened = std::any_of(std::begin(kScreenable), std::end(kScreenable),
+                                      [&](const Screenable& s) { return name == s.name; });
+    if (!screened && std::find(model_effects.begin(), model_effects.end(), name) == model_effects.end())
+      set.not_screened.push_back({name, "stochastic (Gauss-Markov / random walk / ramp): see the NIS and whiteness"});
+  }
   return set;
 }
 

@@ -42,7 +42,7 @@ std::vector<double> autocorrelation(const std::vector<Vec3>& x, int max_lag) {
 }  // namespace
 
 bool SensorCheck::ok() const {
-  return mean_nis.ok() && rejected <= std::max(1, count / 100);
+  return !optimistic() && rejected <= std::max(1, count / 100);
 }
 
 bool ModelCheck::consistent() const {

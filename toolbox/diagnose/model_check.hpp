@@ -37,7 +37,11 @@ struct SensorCheck {
   double effective_n = 0.0;        // count / correlation_time
   double long_run_factor = 1.0;    // long-run variance of the normalised innovations over their variance
   std::vector<SegmentCheck> segments;
-  bool ok() const;
+  // NIS above its band: the model under-predicts its errors (something is missing). Below: the
+  // model is pessimistic (noise larger than needed), which hides nothing.
+  bool optimistic() const { return mean_nis.value > mean_nis.hi; }
+  bool pessimistic() const { return mean_nis.value < mean_nis.lo; }
+  bool ok() const;  // not optimistic and at most 1 % gate rejections
 };
 
 struct ModelCheck {

@@ -24,7 +24,10 @@ void print_check(std::ostream& out, const ModelCheck& mc) {
   for (const SensorCheck& s : mc.sensors) {
     out << "  " << est::measurement_name(s.kind) << ": " << s.count << " measurements, " << s.rejected
         << " gate rejections; mean NIS " << fmt("%.2f", s.mean_nis.value) << " (band " << fmt("%.2f", s.mean_nis.lo)
-        << ".." << fmt("%.2f", s.mean_nis.hi) << ") " << (s.ok() ? "ok" : "FAILS") << "\n";
+        << ".." << fmt("%.2f", s.mean_nis.hi) << ") "
+        << (s.optimistic() ? "TOO HIGH (errors larger than the model says)"
+                           : s.pessimistic() ? "low (the model is pessimistic: noise larger than needed)" : "ok")
+        << "\n";
     out << "    per axis N E D: " << fmt("%.2f", s.axis_nis[0].value) << " " << fmt("%.2f", s.axis_nis[1].value) << " "
         << fmt("%.2f", s.axis_nis[2].value) << "; RMS " << fmt("%.4f", s.rms(0)) << " " << fmt("%.4f", s.rms(1)) << " "
         << fmt("%.4f", s.rms(2)) << "\n";

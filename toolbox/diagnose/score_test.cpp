@@ -116,8 +116,7 @@ ScreeningResult screen(const CandidateSet& set, const std::vector<SensitivityRec
 
   // Testable components: the minimal detectable size (model information inflated by the long-run
   // factor of the innovations) must be below the plausible size.
-  int n_candidates = 0;
-  for (const Candidate& c : set.candidates) n_candidates += 1;
+  const int n_candidates = static_cast<int>(set.candidates.size());
   const double alpha_each = opt.alpha / std::max(1, n_candidates);
   const double lambda1 = noncentrality_for_power(alpha_each, opt.power, 1.0);
 

@@ -44,7 +44,7 @@ class SensitivityObserver final : public est::FilterObserver {
   const CandidateSet& set_;
   Eigen::MatrixXd Psi_;                             // n x P
   Eigen::Matrix<double, 9, Eigen::Dynamic> Gamma_;  // 9 x P, accumulated since the last propagation
-  Mat3X J_gyro_, J_accel_;
+  est::Mat3X J_gyro_, J_accel_;
   double last_t_s_ = -1.0;
   std::vector<SensitivityRecord> records_;
 };

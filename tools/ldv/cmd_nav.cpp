@@ -1,18 +1,27 @@
 // `ldv nav`: the GPS/INS filter over files (DESIGN.md section 2; estimator/README.md).
 //   ldv nav --kfgins-config FILE.yaml [--model NAME] [--add EFFECT]... [--drop EFFECT]... [--out FILE.nav]
 //   ldv nav --imu imu.txt --gnss gnss.txt [--lever x y z] ...
+//   ldv nav --imu-csv imu.csv [--imu-tag imu.csv.tag] --pos rtk.pos [--pos-height-offset N] ...   (the walk)
+//   ldv nav --lcm-log FILE.lcm --kfgins-config FILE.yaml   (replays the live fusion service's engine)
+// Inputs: IMU from KF-GINS imu.txt (--imu or the config) or a time-tagged CSV (--imu-csv); GNSS from KF-GINS
+// gnss.txt (--gnss or the config) or an RTKLIB .pos (--pos); or both from an LCM log (--lcm-log).
 // Outputs: FILE.nav (KF-GINS layout, one line per IMU sample), FILE_std.txt, FILE_innovations.txt.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "common/formats/kfgins_config.hpp"
 #include "common/formats/kfgins_files.hpp"
+#include "common/formats/tagged_imu_csv.hpp"
 #include "common/io/input_error.hpp"
 #include "common/io/text_table.hpp"
+#include "estimator/run/alignment_options_from.hpp"
 #include "estimator/run/run_navigation.hpp"
+#include "services/fusion/log_replay.hpp"
+#include "services/gnss_link/protocols/rtklib_solution.hpp"
 #include "tools/ldv/command_registry.hpp"
 
 namespace {
@@ -20,64 +29,235 @@ namespace fs = std::filesystem;
 using namespace ldv;
 
 struct NavArgs {
-  std::string config, imu, gnss, out, model;
+  std::string config, imu, gnss, pos, lcm_log, imu_csv, imu_tag, out, model;
   std::vector<std::string> add, drop;
   std::vector<double> lever;
   int week = -1;
   double std_rate_hz = 10.0;
+  double pos_height_offset_m = 0.0;
+  double float_std_min_m = 0.0;
+  double align_speed_mps = -1.0;
+  double history_s = 3.0;
+  double align_wait_s = 1.0;
   bool quiet = false, print_options = false;
 };
 
-// Writes columns with fixed decimals fast (the std and innovation files).
+// Writes columns with fixed decimals fast (the std and innovation files), in 256 KiB blocks.
 class TextOut {
  public:
   TextOut(const std::string& path, const std::string& header) : f_(std::fopen(path.c_str(), "wb")), path_(path) {
     if (!f_) throw InputError(path, 0, "cannot open file for writing");
-    std::setvbuf(f_, nullptr, _IOFBF, 1 << 20);
+    buf_.resize(1 << 18);
     std::fputs(header.c_str(), f_);
   }
-  ~TextOut() { std::fclose(f_); }
+  ~TextOut() {
+    flush();
+    std::fclose(f_);
+  }
   void num(double v, int decimals) {
-    if (n_ > 0) buf_[n_++] = ' ';
-    n_ += format_fixed(buf_ + n_, v, decimals);
+    if (n_ > line_start_) buf_[n_++] = ' ';
+    n_ += format_fixed(buf_.data() + n_, v, decimals);
   }
   void text(const char* s) {
-    if (n_ > 0) buf_[n_++] = ' ';
+    if (n_ > line_start_) buf_[n_++] = ' ';
     while (*s) buf_[n_++] = *s++;
   }
   void end_line() {
     buf_[n_++] = '\n';
-    std::fwrite(buf_, 1, n_, f_);
-    n_ = 0;
+    if (n_ + 16384 > buf_.size()) flush();
+    line_start_ = n_;
   }
 
  private:
+  void flush() {
+    if (n_ > 0) std::fwrite(buf_.data(), 1, n_, f_);
+    n_ = line_start_ = 0;
+  }
   std::FILE* f_;
   std::string path_;
-  char buf_[4096];
-  int n_ = 0;
+  std::vector<char> buf_;
+  size_t n_ = 0, line_start_ = 0;
 };
+
+// The three outputs of a run: .nav at every IMU sample, std rows at --std-rate, every innovation.
+class NavOutputs {
+ public:
+  NavOutputs(const std::string& nav_path, const est::NavFilter& f, double std_rate_hz)
+      : nav_(nav_path),
+        std_(base(nav_path) + "_std.txt", std_header(f)),
+        innov_(base(nav_path) + "_innovations.txt",
+               "# t_sow kind innov_1 innov_2 innov_3 sqrtS_11 sqrtS_22 sqrtS_33 nis accepted(1/0) "
+               "(innovation = predicted - measured; position NED [m], velocity NED [m/s])\n"),
+        std_period_(std_rate_hz > 0 ? 1.0 / std_rate_hz : 0.0) {}
+
+  void epoch(const est::NavFilter& f, int week) {
+    const est::NavState& s = f.state();
+    NavRecord rec;
+    rec.week = week;
+    rec.sow_s = s.t_s;
+    rec.pos = s.pos;
+    rec.vel_n_mps = s.v_n_mps;
+    rec.rpy_rad = s.rpy_rad();
+    if (rec.rpy_rad.z() < 0) rec.rpy_rad.z() += 2.0 * kPi;  // KF-GINS prints yaw in [0, 360)
+    nav_.write(rec);
+    if (s.t_s + 1e-9 < next_std_t_) return;
+    next_std_t_ = s.t_s + std_period_;
+    const Eigen::MatrixXd& P = f.covariance();
+    std_.num(week, 0);
+    std_.num(s.t_s, 4);
+    for (int i = 0; i < 6; ++i) std_.num(std::sqrt(P(i, i)), 5);
+    for (int i = 6; i < 9; ++i) std_.num(std::sqrt(P(i, i)) * kRadToDeg, 6);
+    for (const auto& b : f.layout().blocks()) {
+      const double k = b.effect->print_unit().scale;
+      for (int j = 0; j < b.dim; ++j) {
+        std_.num(f.effect_state()(b.offset - est::kNavDim + j) * k, 6);
+        std_.num(std::sqrt(P(b.offset + j, b.offset + j)) * k, 6);
+      }
+    }
+    std_.end_line();
+  }
+
+  void innovation(const est::InnovationRecord& r) {
+    innov_.num(r.t_s, 4);
+    innov_.text(est::measurement_name(r.kind));
+    for (int i = 0; i < 3; ++i) innov_.num(r.innovation(i), 5);
+    for (int i = 0; i < 3; ++i) innov_.num(std::sqrt(r.S(i, i)), 5);
+    innov_.num(r.nis, 3);
+    innov_.num(r.accepted ? 1 : 0, 0);
+    innov_.end_line();
+  }
+
+  static std::string base(const std::string& nav_path) {
+    std::string b = nav_path;
+    if (b.size() > 4 && b.substr(b.size() - 4) == ".nav") b.resize(b.size() - 4);
+    return b;
+  }
+
+ private:
+  static std::string std_header(const est::NavFilter& f) {
+    std::string h =
+        "# week sow std_pos_n std_pos_e std_pos_d [m] std_vel_n std_vel_e std_vel_d [m/s] std_roll std_pitch std_yaw [deg]";
+    for (const auto& b : f.layout().blocks())
+      for (const auto& n : b.effect->state_names()) h += std::string(" ") + n + "[" + b.effect->print_unit().unit + "]";
+    return h + " (each effect state: estimate then std)\n";
+  }
+  NavWriter nav_;
+  TextOut std_, innov_;
+  double std_period_;
+  double next_std_t_ = -1e300;
+};
+
+// RTKLIB .pos -> fixes (+ the GPS week of the first solution). Height offset: .pos files written with
+// the receiver's geoid model give height above mean sea level; add the geoid separation N to get the
+// ellipsoidal height the filter uses (h = H_msl + N).
+std::vector<GnssFix> read_pos_fixes(const NavArgs& a, int* week) {
+  std::vector<GnssFix> out;
+  const auto sols = gnss::read_rtklib_pos(a.pos);
+  for (const auto& s : sols) {
+    GnssFix f = s.fix;
+    f.pos.h_m += a.pos_height_offset_m;
+    if (f.quality != GnssQuality::kFixed && a.float_std_min_m > 0) f.pos_std_ned_m = f.pos_std_ned_m.cwiseMax(a.float_std_min_m);
+    if (!out.empty() && f.t_s <= out.back().t_s) continue;  // repeated epochs
+    out.push_back(f);
+  }
+  if (out.empty()) throw InputError(a.pos, 0, "no solutions in the RTKLIB .pos file");
+  if (week) *week = sols.front().time.week;
+  return out;
+}
+
+int week_from_config(const KfGinsConfig& cfg) {
+  if (!cfg.ldv.IsDefined() || cfg.ldv.IsNull() || !cfg.ldv["week"]) return -1;
+  try {
+    return cfg.ldv["week"].as<int>();
+  } catch (const YAML::Exception&) {
+    throw InputError(cfg.config_path, cfg.ldv["week"].Mark().line + 1, "key 'ldv.week': expected an integer GPS week");
+  }
+}
+
+std::string default_nav_path(const NavArgs& a, const KfGinsConfig& cfg) {
+  if (!a.out.empty()) return a.out;
+  const std::string dir = cfg.output_path.empty() ? "." : cfg.output_path;
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError(dir, 0, "cannot create the output directory: " + ec.message());
+  return (fs::path(dir) / "KF_GINS_Navresult.nav").string();
+}
+
+void print_summary(const char* what, long imu_samples, double t0, double t1, long fixes, const std::string& init,
+                   const est::NavFilter& f, double elapsed, const std::string& nav_path) {
+  const auto& ft = f.faults();
+  std::fprintf(stderr,
+               "ldv nav: %s: %ld IMU samples from %.3f to %.3f s, %ld GNSS fixes; initial state: %s\n"
+               "  gate rejections %ld (resyncs %ld), covariance resets %ld, state resets %ld, IMU samples rejected %ld,"
+               " gaps %ld; final status %s\n  %.3f s (%.0f IMU samples/s) -> %s\n",
+               what, imu_samples, t0, t1, fixes, init.c_str(), ft.gate_rejections, ft.gate_resyncs,
+               ft.covariance_resets, ft.state_resets, ft.imu_rejected, ft.imu_gaps,
+               est::describe_status(f.status()).c_str(), elapsed, imu_samples / std::max(elapsed, 1e-9),
+               nav_path.c_str());
+}
+
+void run_lcm_log(const NavArgs& a, const KfGinsConfig& cfg, est::FilterOptions opt, const est::AlignmentOptions& ao) {
+  const auto t_begin = std::chrono::steady_clock::now();
+  opt.history_s = a.history_s;  // as the live service: late fixes re-process the IMU history
+  FusionEngine engine(opt, ao, a.align_wait_s);
+  const std::string nav_path = default_nav_path(a, cfg);
+  std::unique_ptr<NavOutputs> out;
+  long n = 0;
+  double t0 = 0, t1 = 0;
+  const LogReplaySummary sum = replay_fusion_log(a.lcm_log, engine, [&](const FusionOutput& o) {
+    est::NavFilter& f = engine.filter();
+    if (!out) {
+      out = std::make_unique<NavOutputs>(nav_path, f, a.std_rate_hz);
+      t0 = o.state.t_s;
+    }
+    for (const auto& r : f.take_innovations()) out->innovation(r);
+    out->epoch(f, a.week >= 0 ? a.week : o.gps_week);
+    t1 = o.state.t_s;
+    ++n;
+  });
+  if (!out) throw InputError(a.lcm_log, 0, "no navigation output: the log never allowed an alignment (" +
+                                               std::to_string(sum.imu_messages) + " IMU and " +
+                                               std::to_string(sum.gnss_messages) + " GNSS messages)");
+  out.reset();
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
+  if (!a.quiet) {
+    std::fprintf(stderr, "ldv nav: LCM log: %ld IMU, %ld GNSS, %ld malformed, %ld other messages\n", sum.imu_messages,
+                 sum.gnss_messages, sum.malformed, sum.other_messages);
+    print_summary("replayed through FusionEngine", n, t0, t1, sum.gnss_messages, sum.initialisation, engine.filter(),
+                  elapsed, nav_path);
+  }
+}
 
 void run_nav(const NavArgs& a) {
   KfGinsConfig cfg;
   est::FilterOptions opt;
+  const bool imu_given = !a.imu.empty() || !a.imu_csv.empty();
+  const bool gnss_given = !a.gnss.empty() || !a.pos.empty();
+  if (!a.imu.empty() && !a.imu_csv.empty()) throw InputError("ldv nav", 0, "give one of --imu and --imu-csv");
+  if (!a.gnss.empty() && !a.pos.empty()) throw InputError("ldv nav", 0, "give one of --gnss and --pos");
+  if (!a.lcm_log.empty() && (imu_given || gnss_given))
+    throw InputError("ldv nav", 0, "--lcm-log holds both IMU and GNSS: do not combine it with --imu/--gnss/--pos");
+  if (!a.imu_tag.empty() && a.imu_csv.empty()) throw InputError("ldv nav", 0, "--imu-tag goes with --imu-csv");
   if (!a.config.empty()) {
     cfg = load_kfgins_config(a.config);
     opt = est::options_from_kfgins(cfg);
   } else {
-    if (a.imu.empty() || a.gnss.empty()) throw InputError("ldv nav", 0, "give --kfgins-config FILE, or --imu FILE and --gnss FILE");
-    cfg.imu_path = a.imu;
-    cfg.gnss_path = a.gnss;
+    if (a.lcm_log.empty() && (!imu_given || !gnss_given))
+      throw InputError("ldv nav", 0,
+                       "give --kfgins-config FILE, or an IMU input (--imu FILE or --imu-csv FILE) and a GNSS input "
+                       "(--gnss FILE or --pos FILE), or --lcm-log FILE");
     cfg.output_path = ".";
   }
   if (!a.imu.empty()) cfg.imu_path = a.imu;
+  if (!a.imu_csv.empty()) cfg.imu_path = a.imu_csv;
   if (!a.gnss.empty()) cfg.gnss_path = a.gnss;
+  if (!a.pos.empty()) cfg.gnss_path = a.pos;
   if (a.lever.size() == 3) opt.lever_arm.init = Vec3(a.lever[0], a.lever[1], a.lever[2]);
   if (!a.model.empty()) opt.model = a.model;
   opt.add.insert(opt.add.end(), a.add.begin(), a.add.end());
   opt.drop.insert(opt.drop.end(), a.drop.begin(), a.drop.end());
-  int week = a.week;
-  if (week < 0) week = (cfg.ldv.IsDefined() && cfg.ldv["week"]) ? cfg.ldv["week"].as<int>() : 0;
+  est::AlignmentOptions ao = est::alignment_options_from(opt);
+  if (a.align_speed_mps > 0) ao.speed_min_mps = a.align_speed_mps;
 
   std::unique_ptr<est::NavFilter> filter;
   try {
@@ -85,93 +265,52 @@ void run_nav(const NavArgs& a) {
   } catch (const std::invalid_argument& e) {
     throw InputError(a.config.empty() ? "ldv nav" : a.config, 0, e.what());
   }
+  if (!a.quiet && a.print_options) opt.print(std::cerr);
+  if (!a.lcm_log.empty()) {
+    filter.reset();
+    run_lcm_log(a, cfg, opt, ao);
+    return;
+  }
+
   const auto t_begin = std::chrono::steady_clock::now();
-  ImuReadReport imu_report;
-  const std::vector<ImuIncrement> imu = read_kfgins_imu(cfg.imu_path, &imu_report);
-  const std::vector<GnssFix> gnss = read_kfgins_gnss(cfg.gnss_path);
-
-  std::string nav_path = a.out;
-  if (nav_path.empty()) {
-    fs::create_directories(cfg.output_path.empty() ? "." : cfg.output_path);
-    nav_path = (fs::path(cfg.output_path.empty() ? "." : cfg.output_path) / "KF_GINS_Navresult.nav").string();
+  int week = a.week;
+  if (week < 0) week = week_from_config(cfg);
+  std::vector<ImuIncrement> imu;
+  std::string imu_note;
+  if (!a.imu_csv.empty()) {
+    TaggedImuCsvReport rep;
+    imu = read_tagged_imu_csv(a.imu_csv, a.imu_tag.empty() ? a.imu_csv + ".tag" : a.imu_tag, {}, &rep);
+    imu_note = std::to_string(rep.skipped_lines) + " malformed lines and " + std::to_string(rep.skipped_counter) +
+               " repeated counters skipped";
+  } else {
+    ImuReadReport rep;
+    imu = read_kfgins_imu(cfg.imu_path, &rep);
+    imu_note = std::to_string(rep.skipped_duplicates) + " duplicates skipped, " + std::to_string(rep.gaps) + " gaps";
   }
-  std::string base = nav_path;
-  if (base.size() > 4 && base.substr(base.size() - 4) == ".nav") base.resize(base.size() - 4);
+  int pos_week = -1;
+  const std::vector<GnssFix> gnss = a.pos.empty() ? read_kfgins_gnss(cfg.gnss_path) : read_pos_fixes(a, &pos_week);
+  if (week < 0) week = pos_week >= 0 ? pos_week : 0;
+
+  const std::string nav_path = default_nav_path(a, cfg);
   if (!a.quiet) {
-    std::fprintf(stderr, "ldv nav: %zu IMU samples (%ld duplicates skipped, %ld gaps), %zu GNSS fixes\n", imu.size(),
-                 imu_report.skipped_duplicates, imu_report.gaps, gnss.size());
+    std::fprintf(stderr, "ldv nav: %zu IMU samples (%s), %zu GNSS fixes\n", imu.size(), imu_note.c_str(), gnss.size());
     std::fprintf(stderr, "state layout (%d states):\n%s", filter->layout().size(), filter->layout().describe().c_str());
-    if (a.print_options) opt.print(std::cerr);
   }
 
-  NavWriter nav_out(nav_path);
-  std::string std_header =
-      "# week sow std_pos_n std_pos_e std_pos_d [m] std_vel_n std_vel_e std_vel_d [m/s] std_roll std_pitch std_yaw [deg]";
-  for (const auto& b : filter->layout().blocks())
-    for (const auto& n : b.effect->state_names())
-      std_header += std::string(" ") + n + "[" + b.effect->print_unit().unit + "]";
-  std_header += " (each effect state: estimate then std)\n";
-  TextOut std_out(base + "_std.txt", std_header);
-  TextOut innov_out(base + "_innovations.txt",
-                    "# t_sow kind innov_1 innov_2 innov_3 sqrtS_11 sqrtS_22 sqrtS_33 nis accepted(1/0) "
-                    "(innovation = predicted - measured; position NED [m], velocity NED [m/s])\n");
-
-  double next_std_t = -1e300;
-  const double std_period = a.std_rate_hz > 0 ? 1.0 / a.std_rate_hz : 0.0;
-  NavRecord rec;
-  rec.week = week;
+  NavOutputs out(nav_path, *filter, a.std_rate_hz);
   est::RunCallbacks cb;
-  cb.on_epoch = [&](const est::NavFilter& f) {
-    const est::NavState& s = f.state();
-    rec.sow_s = s.t_s;
-    rec.pos = s.pos;
-    rec.vel_n_mps = s.v_n_mps;
-    rec.rpy_rad = s.rpy_rad();
-    if (rec.rpy_rad.z() < 0) rec.rpy_rad.z() += 2.0 * kPi;  // KF-GINS prints yaw in [0, 360)
-    nav_out.write(rec);
-    if (s.t_s + 1e-9 >= next_std_t) {
-      next_std_t = s.t_s + std_period;
-      const Eigen::VectorXd sd = f.covariance().diagonal().cwiseSqrt();
-      std_out.num(week, 0);
-      std_out.num(s.t_s, 4);
-      for (int i = 0; i < 6; ++i) std_out.num(sd(i), 5);
-      for (int i = 6; i < 9; ++i) std_out.num(sd(i) * kRadToDeg, 6);
-      for (const auto& b : f.layout().blocks()) {
-        const double k = b.effect->print_unit().scale;
-        for (int j = 0; j < b.dim; ++j) {
-          std_out.num(f.effect_state()(b.offset - est::kNavDim + j) * k, 6);
-          std_out.num(sd(b.offset + j) * k, 6);
-        }
-      }
-      std_out.end_line();
-    }
-  };
-  cb.on_innovation = [&](const est::InnovationRecord& r) {
-    innov_out.num(r.t_s, 4);
-    innov_out.text(est::measurement_name(r.kind));
-    for (int i = 0; i < 3; ++i) innov_out.num(r.innovation(i), 5);
-    for (int i = 0; i < 3; ++i) innov_out.num(std::sqrt(r.S(i, i)), 5);
-    innov_out.num(r.nis, 3);
-    innov_out.num(r.accepted ? 1 : 0, 0);
-    innov_out.end_line();
-  };
+  cb.on_epoch = [&](const est::NavFilter& f) { out.epoch(f, week); };
+  cb.on_innovation = [&](const est::InnovationRecord& r) { out.innovation(r); };
   const bool show_progress = !a.quiet && imu.size() > 100000;
   if (show_progress)
     cb.on_progress = [](double done) { std::fprintf(stderr, "\rldv nav: %3.0f %%", done * 100.0); };
 
-  const est::RunSummary sum = est::run_navigation(imu, gnss, cfg, *filter, cb);
+  const est::RunSummary sum = est::run_navigation(imu, gnss, cfg, *filter, cb, &ao);
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
   if (show_progress) std::fprintf(stderr, "\r");
-  if (!a.quiet) {
-    const auto& ft = sum.faults;
-    std::fprintf(stderr,
-                 "ldv nav: %ld IMU samples from %.3f to %.3f s, %ld GNSS fixes; initial state: %s\n"
-                 "  gate rejections %ld (resyncs %ld), covariance resets %ld, state resets %ld, IMU samples rejected %ld,"
-                 " gaps %ld; final status %s\n  %.3f s (%.0f IMU samples/s) -> %s\n",
-                 sum.imu_samples, sum.t_start_s, sum.t_end_s, sum.gnss_fixes, sum.initialisation.c_str(),
-                 ft.gate_rejections, ft.gate_resyncs, ft.covariance_resets, ft.state_resets, ft.imu_rejected, ft.imu_gaps,
-                 est::describe_status(sum.final_status).c_str(), elapsed, sum.imu_samples / elapsed, nav_path.c_str());
-  }
+  if (!a.quiet)
+    print_summary("files", sum.imu_samples, sum.t_start_s, sum.t_end_s, sum.gnss_fixes, sum.initialisation, *filter,
+                  elapsed, nav_path);
 }
 
 void add_nav_command(CLI::App& app) {
@@ -179,14 +318,27 @@ void add_nav_command(CLI::App& app) {
   CLI::App* c = app.add_subcommand("nav", "GPS/INS error-state EKF over KF-GINS files (writes a KF-GINS .nav)");
   c->add_option("--kfgins-config", args->config, "KF-GINS YAML configuration (paths, rates, init state, imunoise, antlever)");
   c->add_option("--imu", args->imu, "IMU increments (KF-GINS imu.txt), overrides the config");
+  c->add_option("--imu-csv", args->imu_csv, "IMU rates as CSV ax,ay,az[g],gx,gy,gz[deg/s],counter[ms] with an RTKLIB tag file");
+  c->add_option("--imu-tag", args->imu_tag, "RTKLIB time-tag file of --imu-csv (default: FILE.tag)");
   c->add_option("--gnss", args->gnss, "GNSS solutions (7- or 13-column KF-GINS gnss.txt), overrides the config");
+  c->add_option("--pos", args->pos, "GNSS solutions from an RTKLIB .pos file, overrides the config");
+  c->add_option("--pos-height-offset", args->pos_height_offset_m,
+                "added to the .pos heights [m]: the geoid separation N when the file gives height above MSL "
+                "(e.g. 21.387 for walk_0827)");
+  c->add_option("--float-std-min", args->float_std_min_m,
+                "minimum position std [m] of .pos solutions that are not RTK-fixed (0: as reported)");
+  c->add_option("--lcm-log", args->lcm_log, "replay an LCM log (IMU + GNSS_SOLUTION) through the fusion service's engine");
+  c->add_option("--history", args->history_s, "with --lcm-log: how late a GNSS fix may arrive [s] (as the live service)");
+  c->add_option("--align-wait", args->align_wait_s, "with --lcm-log: host seconds the alignment waits for GNSS");
   c->add_option("--model", args->model, "ins15 | kfgins21 | geoldv51 (default kfgins21 or ldv.model)");
   c->add_option("--add", args->add, "add an effect block (repeatable)");
   c->add_option("--drop", args->drop, "drop an effect block (repeatable)");
   c->add_option("--out", args->out, "output .nav (default <outputpath>/KF_GINS_Navresult.nav)");
   c->add_option("--lever", args->lever, "antenna lever arm x y z [m], body front-right-down")->expected(3);
-  c->add_option("--week", args->week, "GPS week written in the .nav (default ldv.week or 0)");
+  c->add_option("--week", args->week, "GPS week written in the .nav (default ldv.week, the .pos week, or 0)");
   c->add_option("--std-rate", args->std_rate_hz, "rate of the _std.txt rows [Hz] (0: every IMU sample)");
+  c->add_option("--align-speed", args->align_speed_mps,
+                "alignment without a given state: GNSS speed [m/s] above which the course gives the heading (default 2)");
   c->add_flag("--quiet", args->quiet, "no progress or summary on stderr");
   c->add_flag("--print-options", args->print_options, "print the filter options");
   c->callback([args] { run_nav(*args); });

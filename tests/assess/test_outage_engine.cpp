@@ -1,0 +1,93 @@
+// `ldv outage` end to end on simulated drives: the plan, checkpoint restarts against full re-runs with the
+// fixes removed (what cutting the GNSS file gives), perfect sensors, tactical-grade drift against its
+// closed-form size, and the filter's 3-sigma envelope.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "estimator/run/run_navigation.hpp"
+#include "sim_drive.hpp"
+#include "toolbox/assess/outage_run.hpp"
+#include "toolbox/assess/outage_table.hpp"
+
+using namespace ldv;
+using namespace ldv::assess;
+
+namespace {
+
+OutageRun outages(const sim::SimResult& s, const std::vector<double>& lengths, bool exact) {
+  OutageRunOptions o;
+  o.lengths_s = lengths;
+  o.plan.recovery_s = 60.0;
+  o.exact_rerun = exact;
+  return run_outages(s.imu, s.gnss, s.kfgins, est::options_from_kfgins(s.kfgins), test::truth_series(s), o);
+}
+
+}  // namespace
+
+TEST(OutagePlan, StartsDuringManoeuvresAfterConvergenceWithoutOverlap) {
+  const auto& s = test::sim_drive("hg1700", 900.0);
+  const std::vector<OutageWindow> plan = plan_outages(s.gnss, {60.0, 120.0}, s.imu.back().t_s, {});
+  ASSERT_GE(plan.size(), 6u);
+  const double t0 = s.gnss.front().t_s;
+  int manoeuvres = 0;
+  std::map<double, double> last_end;
+  for (const OutageWindow& w : plan) {
+    EXPECT_GE(w.start_s, t0 + 120.0);
+    EXPECT_LE(w.start_s + w.length_s, s.imu.back().t_s);
+    if (last_end.count(w.length_s)) EXPECT_GE(w.start_s, last_end[w.length_s] + 120.0 - 1e-9);
+    last_end[w.length_s] = w.start_s + w.length_s;
+    manoeuvres += w.manoeuvre;
+  }
+  EXPECT_EQ(manoeuvres, static_cast<int>(plan.size()));  // the drive always has a turn within a minute
+}
+
+TEST(OutageEngine, CheckpointRestartsMatchFullRerunsWithTheFixesRemoved) {
+  const auto& s = test::sim_drive("hg1700", 700.0);
+  const OutageRun fast = outages(s, {60.0, 120.0}, false);
+  const OutageRun exact = outages(s, {60.0, 120.0}, true);
+  ASSERT_EQ(fast.outages.size(), exact.outages.size());
+  ASSERT_GE(fast.outages.size(), 4u);
+  for (size_t i = 0; i < fast.outages.size(); ++i) {
+    const OutageResult &a = fast.outages[i], &b = exact.outages[i];
+    EXPECT_EQ(a.t_end_s, b.t_end_s);
+    const double drift = b.end_drift.pos_ned_m.norm();
+    EXPECT_NEAR((a.end_drift.pos_ned_m - b.end_drift.pos_ned_m).norm(), 0.0, 0.02 * drift + 0.01) << "outage " << i;
+    EXPECT_NEAR((a.end_std.pos_ned_m - b.end_std.pos_ned_m).norm(), 0.0, 0.02 * b.end_std.pos_ned_m.norm());
+  }
+}
+
+TEST(OutageEngine, PerfectSensorsBarelyDrift) {
+  const auto& s = test::sim_drive("perfect", 500.0, "drive", {}, false);
+  const OutageRun run = outages(s, {120.0}, false);
+  ASSERT_GE(run.outages.size(), 2u);
+  for (const OutageResult& r : run.outages) {
+    EXPECT_LT(r.end_drift.pos_ned_m.norm(), 0.1);
+    EXPECT_LT(r.end_drift.att_phi_n_rad.norm() * kRadToDeg, 0.01);
+  }
+}
+
+TEST(OutageEngine, TacticalDriftHasTheClosedFormSizeAndStaysInTheEnvelope) {
+  const auto& s = test::sim_drive("hg1700", 1500.0);
+  const OutageRun run = outages(s, {60.0, 120.0}, false);
+  const auto table = summarise_outages(run);
+  ASSERT_EQ(table.size(), 2u);
+  // Residual in-run errors of an HG1700 after RTK: bias instability 0.05 mg and 0.3 deg/h.
+  for (const OutageLengthSummary& l : table) {
+    const double t = l.length_s;
+    const double accel = 0.5 * 0.05e-3 * 9.81 * t * t, gyro = 9.81 * 0.3 * kDegToRad / 3600.0 * t * t * t / 6.0;
+    const double closed_form = std::hypot(accel, gyro);
+    EXPECT_GT(l.rms_max_horizontal_m, closed_form / 10.0) << t << " s";
+    EXPECT_LT(l.rms_max_horizontal_m, closed_form * 10.0) << t << " s";
+    std::printf("%.0f s outages: %d, RMS of max horizontal drift %.3f m, closed form %.3f m, inside 3 sigma %.0f %%\n", t,
+                l.outages, l.rms_max_horizontal_m, closed_form, 100 * l.inside_3sigma_pos);
+  }
+  // The filter's 3-sigma envelope holds the drift (kfgins21's position NEES is ~3x high on this RTK,
+  // estimator/README.md: expect ~90 %, not 99.7 %).
+  int inside = 0, total = 0;
+  for (const OutageResult& r : run.outages) {
+    const EnvelopeCheck e = envelope_check(r);
+    for (int i = 0; i < 3; ++i) inside += e.pos[i], ++total;
+  }
+  EXPECT_GE(static_cast<double>(inside) / total, 0.85);
+}

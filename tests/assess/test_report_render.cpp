@@ -1,0 +1,115 @@
+// `ldv report` end to end: a simulated run through `ldv nav` and `ldv outage`, Allan and diagnosis JSON
+// in their commands' schemas, the page written, every image present and non-empty, and the page opened
+// in headless Chromium: it renders and every image decodes (naturalWidth > 0).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "sim_drive.hpp"
+
+using namespace ldv;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kLdv = std::string(LDV_BIN_DIR) + "/ldv";
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+int run(const std::string& cmd) { return std::system(cmd.c_str()); }
+
+void write_allan_json(const fs::path& p) {
+  // Two channels of an `ldv allan --json` file (toolbox/allan/allan_report.cpp): white noise + flat bias.
+  std::ofstream f(p);
+  f << "{\"tool\": \"ldv allan\", \"channels\": [";
+  for (int c = 0; c < 2; ++c) {
+    const double N = c ? 1e-3 : 5e-5, B = c ? 2e-5 : 2e-6;
+    std::string taus, dev, lo, hi;
+    for (int i = 0; i < 30; ++i) {
+      const double tau = 0.01 * std::pow(10.0, i * 0.15);
+      const double d = std::sqrt(N * N / tau + 0.441 * B * B);
+      taus += (i ? "," : "") + std::to_string(tau);
+      dev += (i ? "," : "") + std::to_string(d);
+      lo += (i ? "," : "") + std::to_string(d * 0.9);
+      hi += (i ? "," : "") + std::to_string(d * 1.1);
+    }
+    f << (c ? "," : "") << "{\"name\": \"" << (c ? "accel_x" : "gyro_x") << "\", \"unit\": \"" << (c ? "m/s^2" : "rad/s")
+      << "\", \"taus_s\": [" << taus << "], \"oadev\": [" << dev << "], \"oadev_lo\": [" << lo << "], \"oadev_hi\": [" << hi
+      << "], \"Q\": 0, \"N\": " << N << ", \"B\": " << B << ", \"K\": 0, \"R\": 0, \"B_model\": \"flat\", \"B_T_s\": 0,"
+      << " \"paper_units\": {\"N\": {\"value\": " << N * 60 << ", \"sigma\": 0.001, \"unit\": \"per sqrt(h)\"}}}";
+  }
+  f << "]}\n";
+}
+
+void write_diagnose_json(const fs::path& p) {
+  std::ofstream(p) << R"({"model": "kfgins21", "consistent": false,
+ "candidates": [{"effect": "lever_arm", "statistic": 412.5, "p_value": 1e-12, "estimate": [0.5, -0.3, -1.2], "sigma": [0.01, 0.01, 0.02], "group": ["lever_arm"]},
+                {"effect": "time_offset", "statistic": 8.1, "p_value": 0.04, "estimate": [0.002], "sigma": [0.001], "group": ["time_offset"]}],
+ "verdict": {"add": ["lever_arm"]},
+ "before": {"nis_position": 35.2, "rms_north_m": 0.31}, "after": {"nis_position": 3.1, "rms_north_m": 0.02}})";
+}
+
+}  // namespace
+
+TEST(ReportRender, PageWithEveryPlotOpensInChromium) {
+  const fs::path dir = fs::temp_directory_path() / "ldv_assess_report_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  sim::SimResult s = test::sim_drive("hg1700", 400.0);
+  sim::write_outputs(s, (dir / "sim").string());
+  const std::string cfg = (dir / "sim" / "kfgins.yaml").string(), truth = (dir / "sim" / "truth.nav").string();
+  ASSERT_EQ(run(kLdv + " nav --quiet --kfgins-config " + cfg + " --out " + (dir / "run.nav").string()), 0);
+  ASSERT_EQ(run(kLdv + " outage --quiet --kfgins-config " + cfg + " --truth " + truth +
+                " --lengths 30,60 --converge 60 --recovery 30 --json " + (dir / "outage.json").string() + " > /dev/null"),
+            0);
+  write_allan_json(dir / "allan.json");
+  write_diagnose_json(dir / "diagnose.json");
+  const fs::path out = dir / "report";
+  ASSERT_EQ(run(kLdv + " report --nav " + (dir / "run.nav").string() + " --truth " + truth + " --outage-json " +
+                (dir / "outage.json").string() + " --allan-json " + (dir / "allan.json").string() + " --diagnose-json " +
+                (dir / "diagnose.json").string() + " --settle 10 --title 'Report test' --out " + out.string() + " > /dev/null"),
+            0);
+
+  // Every image referenced exists, is a PNG and is not empty; every section is there.
+  const std::string html = slurp(out / "index.html");
+  const std::regex img("<img src=\"([^\"]+)\"");
+  int images = 0;
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), img); it != std::sregex_iterator(); ++it, ++images) {
+    const fs::path png = out / (*it)[1].str();
+    ASSERT_TRUE(fs::exists(png)) << png;
+    EXPECT_GT(fs::file_size(png), 2000u) << png;
+    EXPECT_EQ(slurp(png).substr(1, 3), "PNG") << png;
+  }
+  // trajectory, 3 error panels, position innovations, 2 outage lengths, 2 Allan channels, 2 diagnosis plots
+  EXPECT_EQ(images, 11);
+  for (const char* heading : {"Trajectory", "Errors against truth", "Innovations", "GNSS outages", "Allan deviation", "Diagnosis"})
+    EXPECT_NE(html.find(heading), std::string::npos) << heading;
+
+  if (run("command -v chromium > /dev/null") != 0) GTEST_SKIP() << "chromium not installed (apt-get install chromium)";
+  // A copy of the page with a script that records whether every image decoded; the page itself has none.
+  std::string probe = html;
+  probe.insert(probe.rfind("</body>"),
+               "<script>window.addEventListener('load',()=>{const im=[...document.images];"
+               "document.body.setAttribute('data-images-loaded',im.filter(i=>i.complete&&i.naturalWidth>0).length+'/'+im.length);});</script>");
+  std::ofstream(out / "probe.html") << probe;
+  const std::string chromium =
+      "chromium --headless --no-sandbox --disable-gpu --disable-dev-shm-usage --disable-background-networking "
+      "--disable-component-update --disable-sync --no-first-run --virtual-time-budget=10000 --user-data-dir=" +
+      (dir / "chromium-profile").string();
+  ASSERT_EQ(run(chromium + " --dump-dom file://" + (out / "probe.html").string() + " > " + (dir / "dom.html").string() + " 2> /dev/null"), 0);
+  EXPECT_NE(slurp(dir / "dom.html").find("data-images-loaded=\"11/11\""), std::string::npos);
+  ASSERT_EQ(run(chromium + " --window-size=1280,2000 --screenshot=" + (dir / "screenshot.png").string() + " file://" +
+                (out / "index.html").string() + " > /dev/null 2>&1"),
+            0);
+  EXPECT_GT(fs::file_size(dir / "screenshot.png"), 50000u);  // a blank page is a few kB
+  std::printf("report: %s, screenshot: %s\n", (out / "index.html").c_str(), (dir / "screenshot.png").c_str());
+}

@@ -1,0 +1,33 @@
+#include "toolbox/assess/json_file.hpp"
+
+#include <limits>
+
+#include "common/io/input_error.hpp"
+
+namespace ldv::assess {
+
+YAML::Node load_json_file(const std::string& path) {
+  try {
+    return YAML::LoadFile(path);
+  } catch (const YAML::Exception& e) {
+    throw InputError(path, e.mark.line + 1, std::string("not readable JSON: ") + e.msg);
+  }
+}
+
+double json_double(const YAML::Node& n, double fallback) {
+  if (!n || n.IsNull() || !n.IsScalar()) return fallback;
+  try {
+    return n.as<double>();
+  } catch (const YAML::Exception&) {
+    return fallback;
+  }
+}
+
+std::vector<double> json_doubles(const YAML::Node& a) {
+  std::vector<double> v;
+  if (!a || !a.IsSequence()) return v;
+  for (const auto& x : a) v.push_back(json_double(x, std::numeric_limits<double>::quiet_NaN()));
+  return v;
+}
+
+}  // namespace ldv::assess

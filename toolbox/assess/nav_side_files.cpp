@@ -1,0 +1,57 @@
+#include "toolbox/assess/nav_side_files.hpp"
+
+#include <fstream>
+
+#include "common/io/input_error.hpp"
+#include "common/io/text_table.hpp"
+
+namespace ldv::assess {
+namespace {
+std::string base_of(const std::string& nav_path) {
+  const bool nav = nav_path.size() > 4 && nav_path.compare(nav_path.size() - 4, 4, ".nav") == 0;
+  return nav ? nav_path.substr(0, nav_path.size() - 4) : nav_path;
+}
+}  // namespace
+
+std::string std_path_for(const std::string& nav_path) { return base_of(nav_path) + "_std.txt"; }
+std::string innovations_path_for(const std::string& nav_path) { return base_of(nav_path) + "_innovations.txt"; }
+
+std::vector<StdRow> read_std_file(const std::string& path) {
+  std::vector<StdRow> rows;
+  // week sow + 9 navigation stds, then two columns per effect state (any number).
+  read_numeric_table(path, 11, 100000, [&](long, const std::vector<double>& v) {
+    StdRow r;
+    r.t_s = v[1];
+    r.pos_ned_m = Vec3(v[2], v[3], v[4]);
+    r.vel_ned_mps = Vec3(v[5], v[6], v[7]);
+    r.att_deg = Vec3(v[8], v[9], v[10]);
+    rows.push_back(r);
+  });
+  return rows;
+}
+
+std::vector<InnovationRow> read_innovations_file(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) throw InputError(path, 0, "cannot open file");
+  std::vector<InnovationRow> rows;
+  std::vector<std::string_view> fields;
+  std::string line;
+  for (long n = 1; std::getline(f, line); ++n) {
+    if (line.empty() || line[0] == '#') continue;
+    split_fields(line, fields);
+    if (fields.size() != 10) throw InputError(path, n, "expected 10 columns: t kind innov x3 sqrtS x3 nis accepted");
+    InnovationRow r;
+    r.t_s = parse_double(fields[0], path, n, 1);
+    r.kind = std::string(fields[1]);
+    for (int i = 0; i < 3; ++i) {
+      r.innovation(i) = parse_double(fields[2 + i], path, n, 3 + i);
+      r.sqrt_S(i) = parse_double(fields[5 + i], path, n, 6 + i);
+    }
+    r.nis = parse_double(fields[8], path, n, 9);
+    r.accepted = parse_double(fields[9], path, n, 10) != 0.0;
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+}  // namespace ldv::assess

@@ -1,0 +1,39 @@
+#include "toolbox/assess/report_sections.hpp"
+
+#include <filesystem>
+
+#include "common/formats/kfgins_files.hpp"
+#include "common/geo/earth_model.hpp"
+#include "toolbox/assess/gnuplot_figure.hpp"
+#include "toolbox/assess/nav_side_files.hpp"
+
+namespace ldv::assess {
+namespace fs = std::filesystem;
+
+std::string write_report(const ReportInputs& given, const std::string& dir) {
+  ReportInputs in = given;
+  fs::create_directories(dir);
+  HtmlPage page(in.title);
+  if (!in.nav.empty()) {
+    if (in.std_file.empty() && fs::exists(std_path_for(in.nav))) in.std_file = std_path_for(in.nav);
+    if (in.innovations.empty() && fs::exists(innovations_path_for(in.nav))) in.innovations = innovations_path_for(in.nav);
+    const NavSeries nav = NavSeries::from_records(read_nav(in.nav));
+    NavSeries reference;
+    if (!in.truth.empty()) reference = NavSeries::from_records(read_nav(in.truth));
+    const NavSeries* ref = in.truth.empty() ? nullptr : &reference;
+    page.paragraph("Solution " + in.nav + ": " + std::to_string(nav.size()) + " epochs over " +
+                   fixed(nav.t_end_s() - nav.t_begin_s(), 1) + " s" +
+                   (ref ? "; compared with " + in.reference_label + " " + in.truth : "") + ".");
+    add_trajectory_section(page, dir, nav, ref, in);
+    add_error_section(page, dir, nav, ref, in);
+  }
+  if (!in.innovations.empty()) add_innovation_section(page, dir, in);
+  if (!in.outage_json.empty()) add_outage_section(page, dir, in);
+  if (!in.allan_json.empty()) add_allan_section(page, dir, in);
+  if (!in.diagnose_json.empty()) add_diagnosis_section(page, dir, in);
+  const std::string index = (fs::path(dir) / "index.html").string();
+  page.write(index);
+  return index;
+}
+
+}  // namespace ldv::assess

@@ -1,0 +1,60 @@
+// Report section: GNSS / ZUPT innovations against their predicted 3-sigma, and NIS statistics.
+#include <map>
+
+#include "toolbox/assess/gnuplot_figure.hpp"
+#include "toolbox/assess/nav_side_files.hpp"
+#include "toolbox/assess/report_sections.hpp"
+
+namespace ldv::assess {
+
+void add_innovation_section(HtmlPage& page, const std::string& dir, const ReportInputs& in) {
+  const std::vector<InnovationRow> rows = read_innovations_file(in.innovations);
+  if (rows.empty()) return;
+  page.section("Innovations (predicted minus measured) with their 3-sigma");
+  std::map<std::string, std::vector<const InnovationRow*>> by_kind;
+  for (const auto& r : rows) by_kind[r.kind].push_back(&r);
+  const double t0 = rows.front().t_s;
+  HtmlTable stats{"NIS per measurement (3 dof: mean 3 when consistent)", {"measurement", "count", "accepted %", "mean NIS", "RMS N", "RMS E", "RMS D"}, {}};
+  for (const auto& [kind, list] : by_kind) {
+    double nis = 0, accepted = 0;
+    Vec3 sq = Vec3::Zero();
+    for (const auto* r : list) {
+      nis += r->nis;
+      accepted += r->accepted;
+      sq += r->innovation.cwiseAbs2();
+    }
+    const double n = static_cast<double>(list.size());
+    const Vec3 rms = (sq / n).cwiseSqrt();
+    stats.rows.push_back({kind, std::to_string(list.size()), fixed(100 * accepted / n, 1), fixed(nis / n, 2), fixed(rms(0), 4),
+                          fixed(rms(1), 4), fixed(rms(2), 4)});
+  }
+  bool first = true;
+  for (const auto& [kind, list] : by_kind) {
+    std::vector<double> t, i0, i1, i2, s0, s1, s2;
+    for (size_t k : thin_indices(list.size(), static_cast<size_t>(in.max_plot_points))) {
+      const InnovationRow& r = *list[k];
+      t.push_back(r.t_s - t0);
+      i0.push_back(r.innovation(0)), i1.push_back(r.innovation(1)), i2.push_back(r.innovation(2));
+      s0.push_back(3 * r.sqrt_S(0)), s1.push_back(3 * r.sqrt_S(1)), s2.push_back(3 * r.sqrt_S(2));
+    }
+    const std::string unit = kind == "gnss_position" ? "m" : "m/s";
+    GnuplotFigure fig(dir, "innovations_" + kind, 1000, 600);
+    const std::string d = fig.add_data({t, i0, i1, i2, s0, s1, s2});
+    fig.add("set multiplot layout 3,1 title '" + kind + " innovations [" + unit + "]'\nset lmargin 12\nset rmargin 22");
+    const char* axis[3] = {"north", "east", "down"};
+    for (int k = 0; k < 3; ++k) {
+      const std::string c = std::to_string(2 + k), s = std::to_string(5 + k);
+      fig.add(std::string("set ylabel '") + axis[k] + " [" + unit + "]'");
+      fig.add(k == 2 ? "set xlabel 'time since first measurement [s]'" : "unset xlabel");
+      fig.add("plot '" + d + "' using 1:" + c + " with points pt 7 ps 0.3 lc rgb '#1f77b4' title 'innovation', '" + d +
+              "' using 1:" + s + " with lines lc rgb '#d62728' dt 2 title '+3 sqrt(S)', '" + d + "' using 1:(-$" + s +
+              ") with lines lc rgb '#d62728' dt 2 title '-3 sqrt(S)'");
+    }
+    fig.add("unset multiplot");
+    page.figure(fig.render(), kind + " innovations and their predicted 3-sigma",
+                first ? std::vector<HtmlTable>{stats} : std::vector<HtmlTable>{});
+    first = false;
+  }
+}
+
+}  // namespace ldv::assess

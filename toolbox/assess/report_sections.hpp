@@ -1,0 +1,35 @@
+#pragma once
+// `ldv report`: one function per section of the page; each writes its PNGs (gnuplot) into `dir` and
+// appends its plots and tables to the page. Sections whose input is missing are not called.
+#include <string>
+
+#include "toolbox/assess/html_page.hpp"
+#include "toolbox/assess/nav_series.hpp"
+
+namespace ldv::assess {
+
+struct ReportInputs {
+  std::string title = "ldvnav run report";
+  std::string nav;          // the solution (.nav)
+  std::string truth;        // truth or a reference solution (.nav), optional
+  std::string reference_label = "truth";
+  std::string std_file;     // ldv nav's _std.txt (default: beside the .nav when present)
+  std::string innovations;  // ldv nav's _innovations.txt (default: beside the .nav when present)
+  std::string outage_json, allan_json, diagnose_json;
+  double settle_s = 0.0;
+  int max_plot_points = 4000;
+};
+
+void add_trajectory_section(HtmlPage& page, const std::string& dir, const NavSeries& nav, const NavSeries* reference,
+                            const ReportInputs& in);
+void add_error_section(HtmlPage& page, const std::string& dir, const NavSeries& nav, const NavSeries* reference,
+                       const ReportInputs& in);
+void add_innovation_section(HtmlPage& page, const std::string& dir, const ReportInputs& in);
+void add_outage_section(HtmlPage& page, const std::string& dir, const ReportInputs& in);
+void add_allan_section(HtmlPage& page, const std::string& dir, const ReportInputs& in);
+void add_diagnosis_section(HtmlPage& page, const std::string& dir, const ReportInputs& in);
+
+// Writes dir/index.html and its PNGs; returns the path of index.html.
+std::string write_report(const ReportInputs& in, const std::string& dir);
+
+}  // namespace ldv::assess
