@@ -22,7 +22,7 @@ std::vector<ImuIncrement> read_kfgins_imu(const std::string& path, ImuReadReport
   std::vector<ImuIncrement> out;
   ImuReadReport rep;
   TextFileLines lines(path);
-  out.reserve(lines.count_lines());
+  out.reserve(lines.estimated_lines());
   double v[7];
   std::string_view text;
   while (lines.next(text)) {

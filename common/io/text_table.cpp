@@ -45,38 +45,71 @@ double parse_double(std::string_view field, const std::string& file, long line, 
 }
 
 TextFileLines::TextFileLines(const std::string& path) : path_(path) {
-  std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
-  if (!f) throw InputError(path, 0, "cannot open file for reading");
-  // One read of the whole file (sized from the file, grown if it was still being written).
-  long size = -1;
-  if (std::fseek(f.get(), 0, SEEK_END) == 0) size = std::ftell(f.get());
-  std::rewind(f.get());
-  data_.resize(size > 0 ? static_cast<size_t>(size) : (1 << 16));
-  size_t used = 0;
-  for (;;) {
-    const size_t got = std::fread(data_.data() + used, 1, data_.size() - used, f.get());
-    used += got;
-    if (used < data_.size()) break;
-    data_.resize(data_.size() * 2);
-  }
-  if (std::ferror(f.get())) throw InputError(path, 0, "read error");
-  data_.resize(used);
+  file_ = std::fopen(path.c_str(), "rb");
+  if (!file_) throw InputError(path, 0, "cannot open file for reading");
+  if (std::fseek(file_, 0, SEEK_END) == 0) file_size_ = std::ftell(file_);
+  if (std::fseek(file_, 0, SEEK_SET) != 0) file_size_ = -1;
+  cap_ = static_cast<size_t>(1) << 20;
+  buf_.reset(new char[cap_]);
 }
 
-bool TextFileLines::next(std::string_view& line) {
-  if (pos_ >= data_.size()) return false;
-  const char* begin = data_.data() + pos_;
-  const void* nl = std::memchr(begin, '\n', data_.size() - pos_);
-  const size_t len = nl ? static_cast<size_t>(static_cast<const char*>(nl) - begin) : data_.size() - pos_;
-  line = std::string_view(begin, len);
-  pos_ += len + 1;
-  ++line_no_;
+TextFileLines::~TextFileLines() {
+  if (file_) std::fclose(file_);
+}
+
+bool TextFileLines::refill() {
+  if (eof_) return false;
+  // Keep the unfinished line at the front; grow only for a line longer than the buffer.
+  const size_t rest = end_ - begin_;
+  if (rest == cap_) {
+    std::unique_ptr<char[]> bigger(new char[2 * cap_]);
+    std::memcpy(bigger.get(), buf_.get() + begin_, rest);
+    buf_ = std::move(bigger);
+    cap_ *= 2;
+  } else if (begin_ > 0) {
+    std::memmove(buf_.get(), buf_.get() + begin_, rest);
+  }
+  begin_ = 0;
+  end_ = rest;
+  const size_t got = std::fread(buf_.get() + end_, 1, cap_ - end_, file_);
+  if (got == 0) {
+    if (std::ferror(file_)) throw InputError(path_, line_no_ + 1, "read error");
+    eof_ = true;
+    return false;
+  }
+  end_ += got;
   return true;
 }
 
-size_t TextFileLines::count_lines() const {
-  const size_t n = static_cast<size_t>(std::count(data_.begin(), data_.end(), '\n'));
-  return n + (!data_.empty() && data_.back() != '\n' ? 1 : 0);
+bool TextFileLines::next(std::string_view& line) {
+  for (;;) {
+    const char* b = buf_.get() + begin_;
+    const void* nl = std::memchr(b, '\n', end_ - begin_);
+    if (nl) {
+      const size_t len = static_cast<size_t>(static_cast<const char*>(nl) - b);
+      line = std::string_view(b, len);
+      begin_ += len + 1;
+      ++line_no_;
+      return true;
+    }
+    if (!refill()) break;
+  }
+  if (begin_ < end_) {  // an unterminated last line
+    line = std::string_view(buf_.get() + begin_, end_ - begin_);
+    begin_ = end_;
+    ++line_no_;
+    return true;
+  }
+  return false;
+}
+
+size_t TextFileLines::estimated_lines() {
+  if (end_ == begin_) refill();
+  const size_t n = end_ - begin_;
+  if (n == 0 || file_size_ <= 0) return 0;
+  const long lines = static_cast<long>(std::count(buf_.get() + begin_, buf_.get() + end_, '\n'));
+  if (lines == 0) return 1;
+  return static_cast<size_t>(static_cast<double>(file_size_) * lines / n * 1.02) + 16;
 }
 
 int parse_numeric_line(std::string_view line, double* values, int max_store, const std::string& path, long line_no) {

@@ -32,6 +32,11 @@ struct AlignmentOptions {
   double gyrocompass_max_yaw_std_rad = 3.0 * kDegToRad;  // use it only when theory promises this
   double speed_min_mps = 2.0;       // course over ground usable above this
   double cog_yaw_std_rad = 3.0 * kDegToRad;
+  // Mounting unknown (hand-held): the course gives the heading of the motion, not of the body x axis.
+  // With N > 1, run_navigation tries N body headings 360/N deg apart for course_trial_s of aided
+  // navigation and keeps the one whose GNSS position innovations are smallest (sum of NIS).
+  int course_hypotheses = 1;
+  double course_trial_s = 8.0;
   Vec3 lever_arm_b_m = Vec3::Zero();
 };
 

@@ -117,8 +117,42 @@ RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vecto
                        "could not align: no static period with usable gyros and no GNSS speed above " +
                            std::to_string(ao.speed_min_mps) + " m/s "
                        "(give initpos/initvel/initatt in the configuration)");
-    filter.initialize(aligner.state(), aligner.std());
+    NavState s0 = aligner.state();
+    NavStd sd0 = aligner.std();
     sum.initialisation = aligner.method();
+    if (ao.course_hypotheses > 1 && sum.initialisation.find("course") != std::string::npos) {
+      // Unknown mounting: which body heading matches the GNSS track over the next course_trial_s?
+      const double step = 2.0 * kPi / ao.course_hypotheses;
+      double best_cost = 1e300, best_dyaw = 0.0;
+      for (int k = 0; k < ao.course_hypotheses; ++k) {
+        const double dyaw = k * step;
+        NavFilter trial(filter.options());
+        NavState s = s0;
+        s.q_b_n = (Quat(Eigen::AngleAxisd(dyaw, Vec3::UnitZ())) * s0.q_b_n).normalized();
+        NavStd sd = sd0;
+        sd.att_rad.z() = std::max(sd0.att_rad.z(), 0.5 * step);
+        trial.initialize(s, sd);
+        size_t gi = g;
+        while (gi < gnss.size() && gnss[gi].t_s <= s.t_s) ++gi;
+        double cost = 0.0;
+        for (size_t j = i; j < imu.size() && imu[j].t_s <= std::min(t1, s.t_s + ao.course_trial_s); ++j) {
+          for (; gi < gnss.size() && gnss[gi].t_s <= imu[j].t_s + 0.5; ++gi) trial.add_gnss(gnss[gi]);
+          trial.add_imu(imu[j]);
+          for (const auto& r : trial.take_innovations())
+            if (r.kind == MeasurementKind::kGnssPosition) cost += std::min(r.nis, 1e6);
+        }
+        if (cost < best_cost) {
+          best_cost = cost;
+          best_dyaw = dyaw;
+        }
+      }
+      s0.q_b_n = (Quat(Eigen::AngleAxisd(best_dyaw, Vec3::UnitZ())) * s0.q_b_n).normalized();
+      sd0.att_rad.z() = std::max(sd0.att_rad.z(), 0.5 * step);
+      sum.initialisation += " (best of " + std::to_string(ao.course_hypotheses) + " body headings: x axis " +
+                            std::to_string(static_cast<int>(std::lround(best_dyaw * kRadToDeg))) +
+                            " deg from the course)";
+    }
+    filter.initialize(s0, sd0);
   }
   sum.t_start_s = filter.state().t_s;
   // Fixes before the initial epoch are not used.

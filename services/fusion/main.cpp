@@ -1,6 +1,9 @@
 // fusion: the estimator as a service. Subscribes IMU and GNSS_SOLUTION, runs FusionEngine (the
 // estimator library `ldv nav` uses), publishes NAV at the IMU rate, NAV_INNOVATION at the GNSS rate
 // and its heartbeat; saves a warm-start state once a second.
+#include <chrono>
+#include <thread>
+
 #include <CLI/CLI.hpp>
 #include <yaml-cpp/yaml.h>
 
@@ -75,7 +78,12 @@ int main(int argc, char** argv) {
     bool announced = false;
 
     auto publish = [&](std::vector<ldv::FusionOutput>& outs) {
-      for (const auto& o : outs) rt.bus().publish("NAV", ldv::nav_message(o, nav_seq++));
+      for (size_t i = 0; i < outs.size(); ++i) {
+        // The backlog released at alignment can be hundreds of NAV at once: pace it, so subscribers
+        // with LCM's default 30-message queue (lcm-logger 1.3.1) keep up.
+        if (i > 0 && i % 16 == 0) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+        rt.bus().publish("NAV", ldv::nav_message(outs[i], nav_seq++));
+      }
       outs.clear();
       for (const auto& r : engine.filter().take_innovations()) {
         if (r.t_s <= last_innovation_t && r.kind == ldv::est::MeasurementKind::kGnssPosition) continue;

@@ -18,7 +18,8 @@ FilterCheckpoint checkpoint_at_truth(const sim::SimResult& s, double t_start_s) 
   est::FilterOptions o;
   o.model = "ins15";
   o.zupt.enabled = false;
-  const NavSample truth = *test::truth_series(s).at(t_start_s);
+  const NavSeries series = test::truth_series(s);
+  const NavSample truth = *series.at(t_start_s);
   est::NavFilter f(o);
   f.initialize(est::NavState{truth.t_s, truth.pos, truth.vel_n_mps, truth.q_b_n}, est::NavStd{});
   return capture_checkpoint(f);
@@ -27,7 +28,8 @@ FilterCheckpoint checkpoint_at_truth(const sim::SimResult& s, double t_start_s) 
 OutageResult free_inertial(const sim::SimResult& s, double start_s, double length_s) {
   const double t0 = s.imu.front().t_s;
   const OutageWindow w{length_s, t0 + start_s, true};
-  return run_outage_segment(checkpoint_at_truth(s, w.start_s), w, s.imu, test::truth_series(s), {});
+  const NavSeries truth = test::truth_series(s);
+  return run_outage_segment(checkpoint_at_truth(s, w.start_s), w, s.imu, truth, {});
 }
 
 }  // namespace

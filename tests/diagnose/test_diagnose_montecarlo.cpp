@@ -76,7 +76,9 @@ TEST(DiagnoseMonteCarlo, DetectionFalseAlarmsAndErrorReduction) {
     std::fflush(stdout);
     if (c.size == "none") EXPECT_LE(any, 0.05 * n) << c.grade << ": false verdicts";
     if (c.size == "large") EXPECT_GE(group, 0.95 * n) << c.grade << " " << c.effect << ": ranked first (or its group)";
-    if (measure_error) EXPECT_GE(reductions, 0.95 * n) << c.grade << " " << c.effect << ": excess error removed";
+    if (measure_error) {
+      EXPECT_GE(reductions, 0.95 * n) << c.grade << " " << c.effect << ": excess error removed";
+    }
   }
 }
 

@@ -70,6 +70,8 @@ TEST(DiagnoseSim, LeverArmEstimateAndJsonContract) {
     EXPECT_NE(json.find(key), std::string::npos) << key;
 }
 
+// Standing still, nothing excites a scale factor or a time offset: they are reported untestable, not
+// guessed. (The lever arm stays testable against the initial position prior.)
 TEST(DiagnoseSim, ScaleFactorsAreUntestableWhenStandingStill) {
   testing::SimCase c;
   c.scenario = "static";
@@ -77,8 +79,32 @@ TEST(DiagnoseSim, ScaleFactorsAreUntestableWhenStandingStill) {
   const sim::SimResult r = testing::simulate(c);
   const Diagnosis d = diagnose(testing::inputs(r), testing::options(r, "ins15"));
   for (const CandidateScore& s : d.steps.front().screening.ranked)
-    if (s.name == "gyro_scale" || s.name == "lever_arm" || s.name == "time_offset") EXPECT_FALSE(s.testable) << s.name;
+    if (s.name == "gyro_scale" || s.name == "time_offset") {
+      EXPECT_FALSE(s.testable) << s.name;
+    }
   EXPECT_TRUE(d.add.empty());
+}
+
+}  // namespace ldv::diag
+
+namespace ldv::diag {
+
+// On constant-speed circles the time offset moves the antenna along track, exactly as a lever arm
+// along body x does: the two come out as one group (with the manoeuvre that separates them), not as a
+// coin toss.
+TEST(DiagnoseSim, TimeOffsetAndLeverArmAreOneGroupOnCircles) {
+  testing::SimCase c;
+  c.scenario = "circle";
+  c.effect = "time_offset=0.05";
+  c.duration_s = 600.0;
+  c.seed = 26;
+  const sim::SimResult r = testing::simulate(c);
+  const Diagnosis d = diagnose(testing::inputs(r), testing::options(r, "kfgins21"));
+  const CandidateScore& top = d.steps.front().screening.ranked.front();
+  ASSERT_TRUE(top.name == "time_offset" || top.name == "lever_arm") << top.name;
+  const auto has = [&](const char* n) { return std::find(top.group.begin(), top.group.end(), n) != top.group.end(); };
+  EXPECT_TRUE(has("time_offset") && has("lever_arm"));
+  EXPECT_FALSE(top.separate_by.empty());
 }
 
 }  // namespace ldv::diag

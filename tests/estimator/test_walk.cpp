@@ -46,7 +46,7 @@ const Walk& walk() {
   return w;
 }
 
-struct Run {
+struct WalkRun {
   std::vector<double> t;
   std::vector<Geodetic> pos;
   std::vector<InnovationRecord> innovations;
@@ -54,13 +54,14 @@ struct Run {
   double t_start = 0;
 };
 
-Run run(const std::vector<GnssFix>& gnss) {
+WalkRun run_walk(const std::vector<GnssFix>& gnss) {
   const Walk& w = walk();
   const FilterOptions o = options_from_kfgins(w.cfg);
   NavFilter f(o);
   AlignmentOptions ao = alignment_options_from(o);
-  ao.speed_min_mps = 0.8;  // walking pace: the GNSS course is usable from ~1 m/s
-  Run r;
+  ao.speed_min_mps = 0.8;     // walking pace: the GNSS course is usable from ~1 m/s
+  ao.course_hypotheses = 12;  // hand-held: the body x axis need not point along the walk
+  WalkRun r;
   RunCallbacks cb;
   cb.on_epoch = [&](const NavFilter& nf) {
     r.t.push_back(nf.state().t_s);
@@ -74,11 +75,11 @@ Run run(const std::vector<GnssFix>& gnss) {
 }
 
 // Largest horizontal difference between a run with GNSS cut over [t0, t0 + len) and the uncut run.
-double outage_drift(const Run& uncut, double t0, double len) {
+double outage_drift(const WalkRun& uncut, double t0, double len) {
   std::vector<GnssFix> cut;
   for (const auto& g : walk().gnss)
     if (g.t_s < t0 || g.t_s >= t0 + len) cut.push_back(g);
-  const Run r = run(cut);
+  const WalkRun r = run_walk(cut);
   double worst = 0;
   for (size_t i = 0, j = 0; i < r.t.size(); ++i) {
     if (r.t[i] < t0 || r.t[i] >= t0 + len) continue;
@@ -93,7 +94,7 @@ TEST(Walk, AlignsItselfAgreesWithRtkFixedAndBoundsOutageDrift) {
   const Walk& w = walk();
   ASSERT_GT(w.imu.size(), 15000u);
   ASSERT_GT(w.gnss.size(), 500u);
-  const Run uncut = run(w.gnss);
+  const WalkRun uncut = run_walk(w.gnss);
   ASSERT_FALSE(uncut.t.empty());
   std::map<long, GnssQuality> quality;  // fix epoch (ms) -> quality
   for (const auto& g : w.gnss) quality[std::lround(g.t_s * 1e3)] = g.quality;
@@ -129,7 +130,7 @@ TEST(Walk, AlignsItselfAgreesWithRtkFixedAndBoundsOutageDrift) {
   for (double d : d30) std::printf(" %.2f", d);
   std::printf(" m\n");
 
-  EXPECT_EQ(uncut.initialisation, "levelling + GNSS course over ground");
+  EXPECT_NE(uncut.initialisation.find("course over ground"), std::string::npos) << uncut.initialisation;
   // Aided: the innovations are the INS prediction over one 0.25 s GNSS interval against a ~1 cm solution;
   // a hand-held walk swings the antenna/IMU by cm, so a few cm RMS is the physical floor.
   EXPECT_LT(h_rms, 0.10);

@@ -16,6 +16,10 @@ constexpr double kHour = 3600.0;
 
 // Gyro truths in the paper's units converted to SI (rad/s based), chosen so that each term
 // dominates over part of the 3 h record (a term that never shows cannot be identified by anyone).
+// "B" here: the simulator's bias instability is a first-order Gauss-Markov process (sigma, T), whose
+// Allan deviation is a hump (0.6174 sigma at 1.893 T), not the flat (2 ln2/pi) B^2 floor; so the
+// study fits the GM term (--gauss-markov) and compares its sigma with the simulated sigma: the same
+// physical quantity. Cramer-Rao bounds of any Allan-variance fit for these two sensors: README.md.
 inline SensorTruth hg1700_gyro() {  // tactical grade
   SensorTruth t;
   t.n = 0.15 * kDeg / 60.0;              // 0.15 deg/sqrt(h)

@@ -344,6 +344,7 @@ NoiseFit fit_noise_model(const std::vector<StabilityPoint>& pts, const FitOption
   out.points = static_cast<int>(d.tau.size());
   const std::vector<ModelTerm> terms = terms_of(opt);
   Model model = fit_model(terms, d);
+  const Model base_irls = model;
 
   // Generalized least squares when the points are one overlapping Allan deviation (N - 2m terms
   // at every m of one series): the full covariance of the estimates across tau replaces the
@@ -377,6 +378,9 @@ NoiseFit fit_noise_model(const std::vector<StabilityPoint>& pts, const FitOption
   std::vector<int> active;
   for (size_t k = 0; k < terms.size(); ++k) if (model.fit.c[k] > 0) active.push_back(static_cast<int>(k));
   const Eigen::MatrixXd cov_active = covariance(model.basis, active, d, model.fit.wh, model.fit.c) * out.covariance_inflation;
+  std::vector<int> all_terms(terms.size());
+  for (size_t k = 0; k < terms.size(); ++k) all_terms[k] = static_cast<int>(k);
+  const Eigen::MatrixXd cov_all = covariance(model.basis, all_terms, d, model.fit.wh, model.fit.c) * out.covariance_inflation;
   for (size_t k = 0; k < terms.size(); ++k) {
     TermEstimate& t = out[terms[k]];
     t.in_model = true;
@@ -413,7 +417,11 @@ NoiseFit fit_noise_model(const std::vector<StabilityPoint>& pts, const FitOption
       const double part = c * term_avar(terms[k], tau, t.shape);
       if (part >= 0.5 * model_at(model.basis, model.fit.c, tau)) dominant = true;
     }
-    t.resolved = c > 2.0 * sc && dominant;
+    // Significance with every term of the model free (not only the active ones): a term that
+    // trades off against one at its bound (a ramp R against a random walk K that came out 0) is
+    // not called resolved on the strength of the other being held at zero.
+    const double sc_free = std::sqrt(std::max(0.0, cov_all(k, k)));
+    t.resolved = c > 2.0 * std::max(sc, sc_free) && dominant;
     if ((terms[k] == ModelTerm::kGaussMarkov || terms[k] == ModelTerm::kSinusoid) && c > 0 &&
         cov_active.rows() > static_cast<long>(active.size())) {
       // The last row/column is ln(shape): sigma(T) = T sigma(ln T).
@@ -450,17 +458,20 @@ NoiseFit fit_noise_model(const std::vector<StabilityPoint>& pts, const FitOption
     with.push_back(t);
     extended.push_back(fit_model(with, d));
   }
+  // The misfit compares the model with and without each excluded term fitted the same way
+  // (independent points, IRLS), so the base is the IRLS model too.
+  const Model& model_ir = base_irls;
   const double first_decade = std::floor(std::log10(d.tau.front()));
   for (double e = first_decade; std::pow(10.0, e) <= d.tau.back(); e += 1.0) {
     DecadeMisfit dm;
     dm.tau_lo_s = std::pow(10.0, e);
     dm.tau_hi_s = std::pow(10.0, e + 1.0);
-    const double chi2 = decade_chi2(model, d, dm.tau_lo_s, dm.tau_hi_s, &dm.points);
+    const double chi2 = decade_chi2(model_ir, d, dm.tau_lo_s, dm.tau_hi_s, &dm.points);
     if (dm.points == 0) continue;
     dm.chi2_per_point = chi2 / dm.points;
     for (size_t i = 0; i < d.tau.size(); ++i) {
       if (d.tau[i] >= dm.tau_lo_s && d.tau[i] < dm.tau_hi_s) {
-        dm.log_ratio += std::log(d.avar[i] / std::max(model_at(model.basis, model.fit.c, d.tau[i]), 1e-300)) / dm.points;
+        dm.log_ratio += std::log(d.avar[i] / std::max(model_at(model_ir.basis, model_ir.fit.c, d.tau[i]), 1e-300)) / dm.points;
       }
     }
     dm.chi2_per_point_with_term = dm.chi2_per_point;

@@ -46,6 +46,19 @@ std::string GnuplotFigure::render() {
   return png;
 }
 
+std::string gnuplot_text(const std::string& s) {
+  std::string o;
+  for (char c : s) {
+    if (c == '_' || c == '^' || c == '{' || c == '}' || c == '@' || c == '&' || c == '~') o += '\\';
+    if (c == '\'') {
+      o += "''";  // a quote inside a single-quoted gnuplot string
+      continue;
+    }
+    o += c;
+  }
+  return o;
+}
+
 std::vector<size_t> thin_indices(size_t n, size_t max_points) {
   std::vector<size_t> idx;
   const size_t step = n > max_points ? (n + max_points - 1) / max_points : 1;

@@ -25,6 +25,9 @@ class GnuplotFigure {
   std::string script_;
 };
 
+// Text for a gnuplot single-quoted string in enhanced mode: '_' and '^' would become sub/superscripts.
+std::string gnuplot_text(const std::string& s);
+
 // Keeps at most max_points evenly spaced indices of n (plots of long runs stay light).
 std::vector<size_t> thin_indices(size_t n, size_t max_points);
 

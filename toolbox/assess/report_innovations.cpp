@@ -40,15 +40,15 @@ void add_innovation_section(HtmlPage& page, const std::string& dir, const Report
     const std::string unit = kind == "gnss_position" ? "m" : "m/s";
     GnuplotFigure fig(dir, "innovations_" + kind, 1000, 600);
     const std::string d = fig.add_data({t, i0, i1, i2, s0, s1, s2});
-    fig.add("set multiplot layout 3,1 title '" + kind + " innovations [" + unit + "]'\nset lmargin 12\nset rmargin 22");
+    fig.add("set multiplot layout 3,1 title '" + gnuplot_text(kind) + " innovations [" + unit + "]'\nset lmargin 12\nset rmargin 22");
     const char* axis[3] = {"north", "east", "down"};
     for (int k = 0; k < 3; ++k) {
       const std::string c = std::to_string(2 + k), s = std::to_string(5 + k);
       fig.add(std::string("set ylabel '") + axis[k] + " [" + unit + "]'");
       fig.add(k == 2 ? "set xlabel 'time since first measurement [s]'" : "unset xlabel");
       fig.add("plot '" + d + "' using 1:" + c + " with points pt 7 ps 0.3 lc rgb '#1f77b4' title 'innovation', '" + d +
-              "' using 1:" + s + " with lines lc rgb '#d62728' dt 2 title '+3 sqrt(S)', '" + d + "' using 1:(-$" + s +
-              ") with lines lc rgb '#d62728' dt 2 title '-3 sqrt(S)'");
+              "' using 1:" + s + " with lines lw 0.8 lc rgb '#d62728' title '+3 sqrt(S)', '" + d + "' using 1:(-$" + s +
+              ") with lines lw 0.8 lc rgb '#d62728' title '-3 sqrt(S)'");
     }
     fig.add("unset multiplot");
     page.figure(fig.render(), kind + " innovations and their predicted 3-sigma",

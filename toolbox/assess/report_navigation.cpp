@@ -40,7 +40,7 @@ void add_trajectory_section(HtmlPage& page, const std::string& dir, const NavSer
                             const ReportInputs& in) {
   page.section("Trajectory");
   const Geodetic origin = nav.samples().front().pos;
-  GnuplotFigure fig(dir, "trajectory", 900, 700);
+  GnuplotFigure fig(dir, "trajectory", 900, 640);
   std::vector<double> e, n;
   local_en(nav, origin, in.max_plot_points, e, n);
   const std::string sol = fig.add_data({e, n});
@@ -125,8 +125,8 @@ void add_error_section(HtmlPage& page, const std::string& dir, const NavSeries& 
       if (ref) plot += "'" + ed + "' using 1:" + std::to_string(2 + k) + " with lines lc rgb '#1f77b4' title 'error'";
       if (!sdd.empty()) {
         const std::string col = std::to_string(2 + k);
-        plot += std::string(ref ? ", " : "") + "'" + sdd + "' using 1:" + col + " with lines lc rgb '#d62728' dt 2 title '+3 sigma', '" +
-                sdd + "' using 1:(-$" + col + ") with lines lc rgb '#d62728' dt 2 title '-3 sigma'";
+        plot += std::string(ref ? ", " : "") + "'" + sdd + "' using 1:" + col + " with lines lw 0.8 lc rgb '#d62728' title '+3 sigma', '" +
+                sdd + "' using 1:(-$" + col + ") with lines lw 0.8 lc rgb '#d62728' title '-3 sigma'";
       }
       fig.add(plot);
     }

@@ -27,6 +27,15 @@ void innovation_scale(const ModelCheck& mc, double& long_run_factor, double& eff
   }
 }
 
+double rejected_fraction(const FilterRun& run) {
+  if (run.records.empty()) return 0.0;
+  long rejected = 0;
+  for (const auto& r : run.records) rejected += !r.accepted;
+  return static_cast<double>(rejected) / run.records.size();
+}
+
+constexpr double kOpenGateProbability = 1.0 - 1e-12;  // NIS gate ~ 60: only numerical garbage rejected
+
 }  // namespace
 
 bool Diagnosis::consistent() const { return add.empty() && !steps.empty() && steps.front().check.consistent(); }
@@ -45,6 +54,13 @@ Diagnosis diagnose(const DiagnoseInputs& in, const DiagnoseOptions& opt) {
     if (opt.verbose) std::fprintf(stderr, "ldv diagnose: screening run %d (%zu candidates)\n", step + 1, st.candidates.candidates.size());
     current_run = run_filter(in, current, &st.candidates);
     ++d.filter_runs;
+    if (step == 0 && rejected_fraction(current_run) > opt.open_gate_above_rejected) {
+      if (opt.verbose) std::fprintf(stderr, "ldv diagnose: %.0f %% of the measurements rejected: gate opened\n", 100.0 * rejected_fraction(current_run));
+      current.gate_probability = kOpenGateProbability;
+      d.gate_opened = true;
+      current_run = run_filter(in, current, &st.candidates);
+      ++d.filter_runs;
+    }
     const std::vector<Segment> labels = classify_epochs(current_run.epochs);
     st.check = check_model(current_run, labels);
     st.screening = screen(st.candidates, current_run.records, record_segments(current_run, labels), opt.screening);

@@ -17,6 +17,9 @@ struct DiagnoseOptions {
   int max_added = 3;             // stepwise: at most this many effects added
   int max_confirmed_per_step = 2;  // significant candidates rerun per step, best first
   double truth_skip_s = 60.0;    // initial convergence left out of the error against truth
+  // A model far from the data rejects most measurements and diverges: then the diagnosis runs with
+  // the gate opened (every measurement used), so the innovations still carry the missing effect.
+  double open_gate_above_rejected = 0.2;
   bool verbose = false;          // progress on stderr
 };
 
@@ -43,6 +46,7 @@ struct Diagnosis {
   TruthError truth_before, truth_after;
   double cpu_s = 0.0;
   int filter_runs = 0;
+  bool gate_opened = false;          // the model rejected too many measurements: diagnosed without gate
   bool consistent() const;           // model check passes and nothing to add
 };
 

@@ -124,6 +124,7 @@ std::string diagnosis_json(const Diagnosis& d) {
   o << "  \"model_check\": {\"before\": " << check_json(d.steps.front().check) << ", \"after\": " << check_json(d.check_after)
     << "},\n";
   o << "  \"truth\": {\"before\": " << truth_json(d.truth_before) << ", \"after\": " << truth_json(d.truth_after) << "},\n";
+  o << "  \"gate_opened\": " << (d.gate_opened ? "true" : "false") << ",\n";
   o << "  \"filter_runs\": " << d.filter_runs << ", \"cpu_s\": " << num(d.cpu_s) << "\n}\n";
   return o.str();
 }

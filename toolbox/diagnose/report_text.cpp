@@ -80,6 +80,8 @@ void print_report(std::ostream& out, const Diagnosis& d) {
   out << "ldv diagnose: model " << d.model << " (";
   for (size_t i = 0; i < d.model_effects.size(); ++i) out << (i ? " " : "") << d.model_effects[i];
   out << ")\n\n1. Model check\n";
+  if (d.gate_opened)
+    out << "  (the model rejected more than 20 % of the measurements and diverged: diagnosed with the gate opened)\n";
   print_check(out, d.steps.front().check);
   for (size_t k = 0; k < d.steps.size(); ++k) {
     const DiagnosisStep& st = d.steps[k];

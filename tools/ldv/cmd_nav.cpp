@@ -37,6 +37,7 @@ struct NavArgs {
   double pos_height_offset_m = 0.0;
   double float_std_min_m = 0.0;
   double align_speed_mps = -1.0;
+  int align_hypotheses = 1;
   double history_s = 3.0;
   double align_wait_s = 1.0;
   bool quiet = false, print_options = false;
@@ -258,6 +259,7 @@ void run_nav(const NavArgs& a) {
   opt.drop.insert(opt.drop.end(), a.drop.begin(), a.drop.end());
   est::AlignmentOptions ao = est::alignment_options_from(opt);
   if (a.align_speed_mps > 0) ao.speed_min_mps = a.align_speed_mps;
+  ao.course_hypotheses = std::max(1, a.align_hypotheses);
 
   std::unique_ptr<est::NavFilter> filter;
   try {
@@ -339,6 +341,9 @@ void add_nav_command(CLI::App& app) {
   c->add_option("--std-rate", args->std_rate_hz, "rate of the _std.txt rows [Hz] (0: every IMU sample)");
   c->add_option("--align-speed", args->align_speed_mps,
                 "alignment without a given state: GNSS speed [m/s] above which the course gives the heading (default 2)");
+  c->add_option("--align-hypotheses", args->align_hypotheses,
+                "unknown mounting (hand-held): try N body headings 360/N apart against the GNSS track (default 1: "
+                "body x along the motion; 12 for a hand-held IMU)");
   c->add_flag("--quiet", args->quiet, "no progress or summary on stderr");
   c->add_flag("--print-options", args->print_options, "print the filter options");
   c->callback([args] { run_nav(*args); });

@@ -19,11 +19,12 @@ struct OutageArgs {
   assess::NavInputArgs inputs;
   std::string truth, json;
   assess::OutageRunOptions run;
-  bool quiet = false;
+  bool quiet = false, no_zupt = false;
 };
 
 void run_outage(OutageArgs& a) {
   assess::NavInputs in = assess::load_nav_inputs(a.inputs);
+  if (a.no_zupt) in.options.zupt.enabled = false;
   assess::NavSeries truth;
   if (!a.truth.empty()) truth = assess::NavSeries::from_records(read_nav(a.truth));
   if (!a.quiet) {
@@ -71,6 +72,7 @@ void add_outage_command(CLI::App& app) {
   c->add_option("--min-speed", a->run.plan.min_speed_mps, "an outage starts only when moving faster [m/s]");
   c->add_option("--threads", a->run.threads, "worker threads (0: all cores)");
   c->add_flag("--exact", a->run.exact_rerun, "re-run the whole filter per outage instead of restarting from checkpoints (slow)");
+  c->add_flag("--no-zupt", a->no_zupt, "no zero-velocity updates (in the uncut run and the outages)");
   c->add_flag("--quiet", a->quiet, "no progress on stderr");
   c->callback([a] { run_outage(*a); });
 }
