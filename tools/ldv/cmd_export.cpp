@@ -1,6 +1,7 @@
 // `ldv export LOG --out DIR`: an LCM log (lcm-logger) -> the interchange files: imu.txt and gnss.txt
 // (KF-GINS, from IMU and GNSS_SOLUTION), nav.nav (from NAV) and tspi.nav (from TSPI), so every
 // offline tool (ldv nav, diagnose, compare, report) reads what the vehicle recorded.
+#include <cmath>
 #include <filesystem>
 #include <lcm/lcm-cpp.hpp>
 
@@ -38,7 +39,7 @@ void add_export_command(CLI::App& app) {
     std::vector<ImuIncrement> imu;
     std::vector<GnssFix> gnss;
     std::unique_ptr<NavWriter> nav, tspi;
-    long malformed = 0, nav_n = 0, tspi_n = 0;
+    long malformed = 0, unlocked = 0, nav_n = 0, tspi_n = 0;
     for (const std::string& path : logs) {
       lcm::LogFile log(path, "r");
       if (!log.good()) throw InputError(path, 0, "cannot open LCM log file");
@@ -46,6 +47,7 @@ void add_export_command(CLI::App& app) {
         if (ev->channel == "IMU") {
           ldv_lcm::imu_sample_t m;
           if (m.decode(ev->data, 0, ev->datalen) < 0 || !is_valid(m)) { ++malformed; continue; }
+          if (!has_gps_time(m)) { ++unlocked; continue; }  // stamped before imu_acq locked to PPS
           imu.push_back(imu_from_message(m));
         } else if (ev->channel == "GNSS_SOLUTION") {
           ldv_lcm::gnss_solution_t m;
@@ -71,10 +73,31 @@ void add_export_command(CLI::App& app) {
     std::stable_sort(imu.begin(), imu.end(), by_time);
     std::stable_sort(gnss.begin(), gnss.end(), by_time);
     gnss.erase(std::unique(gnss.begin(), gnss.end(), [](const GnssFix& a, const GnssFix& b) { return a.t_s == b.t_s; }), gnss.end());
+    // The KF-GINS IMU file has no interval column: a reader takes the time difference as the interval,
+    // so a lost sample would stretch its successor's increment over the gap. Bridge each gap with the
+    // successor's rates (counted and reported) so the file's increments cover time without holes.
+    long bridged = 0;
+    std::vector<ImuIncrement> filled;
+    filled.reserve(imu.size());
+    for (const ImuIncrement& s : imu) {
+      if (!filled.empty() && s.dt_s > 0) {
+        const int missing = static_cast<int>(std::lround((s.t_s - filled.back().t_s) / s.dt_s)) - 1;
+        for (int k = 1; k <= missing && missing < 1000; ++k, ++bridged) {
+          ImuIncrement b = s;
+          b.t_s = filled.back().t_s + s.dt_s;
+          filled.push_back(b);
+        }
+      }
+      filled.push_back(s);
+    }
+    imu.swap(filled);
+    if (bridged > 0) std::fprintf(stderr, "ldv export: %ld lost IMU samples bridged with their successor's rates\n", bridged);
     if (!imu.empty()) write_kfgins_imu((fs::path(out_dir) / "imu.txt").string(), imu);
     if (!gnss.empty()) write_kfgins_gnss((fs::path(out_dir) / "gnss.txt").string(), gnss, true);
-    std::fprintf(stderr, "ldv export: %zu IMU, %zu GNSS, %ld NAV, %ld TSPI records (%ld malformed skipped) -> %s\n",
-                 imu.size(), gnss.size(), nav_n, tspi_n, malformed, out_dir.c_str());
+    std::fprintf(stderr,
+                 "ldv export: %zu IMU, %zu GNSS, %ld NAV, %ld TSPI records (%ld malformed, %ld IMU stamped before "
+                 "the PPS lock skipped) -> %s\n",
+                 imu.size(), gnss.size(), nav_n, tspi_n, malformed, unlocked, out_dir.c_str());
   });
 }
 
