@@ -25,7 +25,6 @@ LogReplaySummary replay_fusion_log(const std::string& log_path, FusionEngine& en
         continue;
       }
       ++sum.imu_messages;
-      if (!has_gps_time(m)) continue;  // as the live service: not yet locked to PPS
       engine.on_imu(imu_from_message(m), m.gps_week, arrival_s, outs);
     } else if (ev->channel == gnss_channel) {
       ldv_lcm::gnss_solution_t m;

@@ -106,7 +106,6 @@ int main(int argc, char** argv) {
         ++rt.counters().malformed;
         return;
       }
-      if (!ldv::has_gps_time(m)) return;  // imu_acq not yet locked to PPS
       last_week = m.gps_week;
       engine.on_imu(ldv::imu_from_message(m), m.gps_week, ldv::host_time_s(), outputs);
       publish(outputs);
