@@ -24,6 +24,7 @@
 #include <ldv_lcm/service_status_t.hpp>
 
 #include "common/bus/bus.hpp"
+#include "tests/integration/bus_spin.hpp"
 #include "services/gnss_link/protocols/rtklib_solution.hpp"
 #include "services/gnss_link/protocols/ubx_framer.hpp"
 #include "services/gnss_link/protocols/ubx_messages.hpp"
@@ -65,12 +66,7 @@ struct Listener {
   // Handles the bus until pred() or timeout_s.
   template <class Pred>
   bool spin_until(Pred pred, double timeout_s) {
-    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-    while (std::chrono::steady_clock::now() < end) {
-      if (pred()) return true;
-      bus.handle(10);
-    }
-    return pred();
+    return test::spin_until(bus, pred, timeout_s);
   }
   void spin_for(double s) { spin_until([] { return false; }, s); }
 };

@@ -21,6 +21,7 @@
 #include <ldv_lcm/service_status_t.hpp>
 
 #include "common/bus/bus.hpp"
+#include "tests/integration/bus_spin.hpp"
 #include "common/formats/imu_device_frame.hpp"
 #include "common/time/gps_time.hpp"
 #include "tests/integration/child_process.hpp"
@@ -101,12 +102,7 @@ struct Listener {
   }
   template <class Pred>
   bool spin_until(Pred pred, double timeout_s) {
-    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-    while (std::chrono::steady_clock::now() < end) {
-      if (pred()) return true;
-      bus.handle(10);
-    }
-    return pred();
+    return test::spin_until(bus, pred, timeout_s);
   }
 };
 }  // namespace
