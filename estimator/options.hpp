@@ -59,6 +59,10 @@ struct FilterOptions {
   bool use_gnss_velocity = true;
   ZuptOptions zupt;
   double history_s = 3.0;            // how late a measurement may arrive (IMU history kept)
+  // Alignment without a given state (estimator/ins/alignment.hpp): GNSS speed above which the course gives
+  // the heading, and how many body headings to try when the mounting is unknown (hand-held: 12).
+  double align_speed_mps = 2.0;
+  int align_hypotheses = 1;
 
   FilterOptions();
   void print(std::ostream& out) const;

@@ -87,7 +87,26 @@ std::vector<ImuIncrement> read_tagged_imu_csv(const std::string& csv_path, const
 
   double offset = 0, rate = 1;
   fit_lower_envelope(raw, offset, rate);
-  rep.counter_rate_error_ppm = (rate - 1.0) * 1e6;
+  rep.host_rate_error_ppm = (rate - 1.0) * 1e6;
+  rep.rate_source = "host reception times (lower envelope)";
+  if (opt.counter_rate > 0.0) {
+    rate = opt.counter_rate;
+    rep.rate_source = "given";
+  } else if (std::abs(rate - 1.0) * 1e6 > opt.max_host_rate_error_ppm) {
+    // A counter off by more than a crystal can be means the reception times are distorted (buffered or
+    // burst delivery), not the counter: keep the counter's nominal rate.
+    rate = 1.0;
+    rep.rate_source = "device counter (host reception rate implausible)";
+  }
+  if (rep.rate_source != "host reception times (lower envelope)") {
+    // Offset from the earliest samples: the log's start is the one moment the reception is known to be prompt.
+    offset = raw.front().reception_gps_s - rate * raw.front().counter_s;
+    for (const auto& x : raw) {
+      if (x.counter_s > raw.front().counter_s + opt.offset_window_s) break;
+      offset = std::min(offset, x.reception_gps_s - rate * x.counter_s);
+    }
+  }
+  rep.counter_rate = rate;
   std::vector<double> latency;
   latency.reserve(raw.size());
   for (const auto& s : raw) latency.push_back(s.reception_gps_s - (offset + rate * s.counter_s));

@@ -7,6 +7,7 @@
 namespace ldv::earth {
 
 constexpr double kOmegaIe_rad_s = 7.2921151467e-5;  // WGS84 Earth rotation rate
+constexpr double kStandardGravity_mps2 = 9.80665;  // conventional g (CGPM 1901)
 double semi_major_axis_m();
 double eccentricity_squared();
 

@@ -378,6 +378,16 @@ void NavFilter::apply_measurement(const Measurement& m) {
     // measured block's variance by the innovation before accepting.
     const int block = m.kind == MeasurementKind::kGnssPosition ? kPos : kVel;
     c_.P.diagonal().segment<3>(block) += m.y.cwiseAbs2();
+    if (m.kind == MeasurementKind::kGnssPosition) {
+      // A position error y that built up over the T seconds since the last accepted fix comes from velocity
+      // errors of order 2 y / T or tilt errors of order 2 |y| / (g T^2): open those too, or the state leaves
+      // the measurements again at once.
+      const double T = std::max(c_.nav.t_s - c_.last_gnss_t_s, 0.1);
+      c_.P.diagonal().segment<3>(kVel) += (2.0 * m.y / T).cwiseAbs2();
+      const double tilt_rad = std::min(2.0 * m.y.head<2>().norm() / (earth::kStandardGravity_mps2 * T * T), 0.1);
+      c_.P(kAtt, kAtt) += tilt_rad * tilt_rad;
+      c_.P(kAtt + 1, kAtt + 1) += tilt_rad * tilt_rad;
+    }
   }
   const bool ok = kalman_update(c_.P, m, gate_, force, rec, dx_, want ? &K_ : nullptr);
   if (ok) {

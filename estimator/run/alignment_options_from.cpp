@@ -1,5 +1,7 @@
 #include "estimator/run/alignment_options_from.hpp"
 
+#include <algorithm>
+
 namespace ldv::est {
 AlignmentOptions alignment_options_from(const FilterOptions& fo) {
   AlignmentOptions ao;
@@ -7,6 +9,8 @@ AlignmentOptions alignment_options_from(const FilterOptions& fo) {
   ao.arw_rad_per_sqrt_s = fo.arw_rad_per_sqrt_s.maxCoeff();
   ao.accel_bias_std_mps2 = fo.accel_bias.init_std.maxCoeff();
   ao.lever_arm_b_m = fo.lever_arm.init;
+  ao.speed_min_mps = fo.align_speed_mps;
+  ao.course_hypotheses = std::max(1, fo.align_hypotheses);
   return ao;
 }
 }  // namespace ldv::est

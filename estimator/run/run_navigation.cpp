@@ -22,6 +22,8 @@ T ldv_key(const KfGinsConfig& cfg, const char* key, T fallback) {
 
 }  // namespace
 
+double ldv_number(const KfGinsConfig& cfg, const char* key, double fallback) { return ldv_key<double>(cfg, key, fallback); }
+
 FilterOptions options_from_kfgins(const KfGinsConfig& cfg) {
   FilterOptions o;
   const KfGinsImuNoise& n = cfg.imu_noise;
@@ -55,6 +57,11 @@ FilterOptions options_from_kfgins(const KfGinsConfig& cfg) {
   o.use_gnss_velocity = ldv_key<bool>(cfg, "use_gnss_velocity", o.use_gnss_velocity);
   o.zupt.enabled = ldv_key<bool>(cfg, "zupt", o.zupt.enabled);
   o.history_s = ldv_key<double>(cfg, "history_s", 0.0);  // offline: fixes are never late
+  o.align_speed_mps = ldv_key<double>(cfg, "align_speed_mps", o.align_speed_mps);
+  o.align_hypotheses = ldv_key<int>(cfg, "align_hypotheses", o.align_hypotheses);
+  if (!(o.align_speed_mps > 0) || o.align_hypotheses < 1 || o.align_hypotheses > 360)
+    throw InputError(cfg.config_path, cfg.ldv["align_speed_mps"] ? cfg.ldv["align_speed_mps"].Mark().line + 1 : 0,
+                     "keys 'ldv.align_speed_mps' (> 0 m/s) and 'ldv.align_hypotheses' (1..360): out of range");
   // gnss_position_bias (used when the model includes it): sigma [m] as one number or [N, E, D], tau [s].
   if (cfg.ldv.IsDefined() && !cfg.ldv.IsNull() && cfg.ldv["gnss_bias_sigma_m"]) {
     const YAML::Node node = cfg.ldv["gnss_bias_sigma_m"];

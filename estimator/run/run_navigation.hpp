@@ -14,9 +14,11 @@ namespace ldv::est {
 // KF-GINS configuration -> filter options: imunoise (arw, vrw, gbstd, abstd, gsstd, asstd, corrtime),
 // init biases/scales and their std, antlever; plus the optional `ldv:` section keys
 //   model, add [list], drop [list], cov_period_s, gate_probability, use_gnss_velocity, zupt (bool),
-//   history_s, gnss_bias_sigma_m (number or [N, E, D]), gnss_bias_tau_s. Throws InputError (file, key)
-//   on a wrong type.
+//   history_s, gnss_bias_sigma_m (number or [N, E, D]), gnss_bias_tau_s, align_speed_mps,
+//   align_hypotheses. Throws InputError (file, key) on a wrong type.
 FilterOptions options_from_kfgins(const KfGinsConfig& cfg);
+// A number from the `ldv:` section, or `fallback` when absent; InputError (file, line, key) on a wrong type.
+double ldv_number(const KfGinsConfig& cfg, const char* key, double fallback);
 
 struct RunCallbacks {
   std::function<void(const NavFilter&)> on_epoch;                       // after every IMU sample

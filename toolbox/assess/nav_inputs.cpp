@@ -1,12 +1,15 @@
 #include "toolbox/assess/nav_inputs.hpp"
 
+#include <cstdio>
 #include <cstdlib>
+#include <optional>
 
 #include "common/formats/kfgins_files.hpp"
 #include "common/formats/tagged_imu_csv.hpp"
 #include "common/io/input_error.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "services/gnss_link/protocols/rtklib_solution.hpp"
+#include "toolbox/calib/imu_calibration.hpp"
 
 namespace ldv::assess {
 namespace {
@@ -24,6 +27,42 @@ void check_axes(const std::vector<int>& axes) {
   if (axes.size() != 3 || seen != 0b1110) throw InputError("--csv-axes", 0, "expected a permutation of 1 2 3 with signs, e.g. 1 -2 -3");
 }
 
+bool ends_with(const std::string& s, const char* suffix) {
+  const std::string x(suffix);
+  return s.size() >= x.size() && s.compare(s.size() - x.size(), x.size(), x) == 0;
+}
+
+// The calibration file: the command line's, else the configuration's ldv.calibration (resolved like imupath).
+std::string calibration_path(const NavInputArgs& a, const KfGinsConfig& cfg) {
+  if (!a.calibration.empty()) return a.calibration;
+  if (!cfg.ldv.IsDefined() || cfg.ldv.IsNull() || !cfg.ldv["calibration"]) return "";
+  const YAML::Node n = cfg.ldv["calibration"];
+  if (!n.IsScalar() || n.Scalar().empty())
+    throw InputError(cfg.config_path, n.Mark().line + 1, "key 'ldv.calibration': expected the path of a calibration file");
+  return calib::resolve_calibration_path(n.Scalar(), cfg.config_path);
+}
+
+// After the calibration, what is left of the bias and scale errors is its uncertainty: that becomes the
+// filter's prior, unless the configuration gives one or the calibration does not know it (a zero sigma).
+std::string take_priors_from(const calib::ImuCalibration& cal, const KfGinsConfig& cfg, est::FilterOptions& o) {
+  std::string taken;
+  const auto take = [&](est::BlockOptions& block, const std::optional<Vec3>& configured, const Vec3& sigma,
+                        const char* name) {
+    if (configured || !(sigma.array() > 0.0).all()) return false;
+    block.init_std = sigma;
+    taken += (taken.empty() ? "" : ", ") + std::string(name);
+    return true;
+  };
+  // options_from_kfgins gives the moving bias's constant part the bias prior: keep them together.
+  if (take(o.gyro_bias, cfg.init_gyro_bias_std_rad_s, cal.gyro.bias_sigma, "gyro_bias"))
+    o.gyro_moving_bias.constant_std = o.gyro_bias.init_std;
+  if (take(o.accel_bias, cfg.init_accel_bias_std_mps2, cal.accel.bias_sigma, "accel_bias"))
+    o.accel_moving_bias.constant_std = o.accel_bias.init_std;
+  take(o.gyro_scale, cfg.init_gyro_scale_std, cal.gyro.scale_sigma, "gyro_scale");
+  take(o.accel_scale, cfg.init_accel_scale_std, cal.accel.scale_sigma, "accel_scale");
+  return taken;
+}
+
 }  // namespace
 
 NavInputs load_nav_inputs(const NavInputArgs& a) {
@@ -32,35 +71,75 @@ NavInputs load_nav_inputs(const NavInputArgs& a) {
     in.config = load_kfgins_config(a.config);
     in.options = est::options_from_kfgins(in.config);
   }
+  const auto setting = [&](double given, const char* key) {
+    return given != NavInputArgs::kUnset ? given : (a.config.empty() ? 0.0 : est::ldv_number(in.config, key, 0.0));
+  };
+  const double height_offset_m = setting(a.pos_height_offset_m, "pos_height_offset_m");
+  const double float_std_min_m = setting(a.float_std_min_m, "float_std_min_m");
+  const double imu_time_shift_s = setting(a.imu_time_shift_s, "imu_time_shift_s");
   if (!a.imu.empty()) in.config.imu_path = a.imu;
+  if (!a.imu_csv.empty()) in.config.imu_path = a.imu_csv;
   if (!a.gnss.empty()) in.config.gnss_path = a.gnss;
+  if (!a.rtklib_pos.empty()) in.config.gnss_path = a.rtklib_pos;
   if (a.lever.size() == 3) in.options.lever_arm.init = Vec3(a.lever[0], a.lever[1], a.lever[2]);
   if (!a.model.empty()) in.options.model = a.model;
   in.options.add.insert(in.options.add.end(), a.add.begin(), a.add.end());
   in.options.drop.insert(in.options.drop.end(), a.drop.begin(), a.drop.end());
 
-  if (!a.imu_csv.empty()) {
+  const std::string& imu_path = in.config.imu_path;
+  if (imu_path.empty()) throw InputError("ldv", 0, "give --kfgins-config FILE, or --imu FILE (or --imu-csv FILE)");
+  // Loaded before the IMU file so a bad calibration is reported before a long read.
+  const std::string cal_path = calibration_path(a, in.config);
+  std::optional<calib::ImuCalibration> cal;
+  if (!cal_path.empty()) cal = calib::load_calibration(cal_path);
+  const auto calibrate = [&] {
+    if (cal)
+      for (ImuIncrement& s : in.imu) s = calib::apply_calibration(*cal, s);
+  };
+  if (!a.imu_csv.empty() || ends_with(imu_path, ".csv")) {
     check_axes(a.csv_axes);
-    if (a.imu_tag.empty()) throw InputError(a.imu_csv, 0, "a tagged IMU CSV needs its time-tag file (--imu-tag)");
-    in.imu = read_tagged_imu_csv(a.imu_csv, a.imu_tag);
+    TaggedImuCsvReport rep;
+    in.imu = read_tagged_imu_csv(imu_path, a.imu_tag.empty() ? imu_path + ".tag" : a.imu_tag, {}, &rep);
+    calibrate();  // in the device axes, as `ldv calib static` saw them
     for (ImuIncrement& s : in.imu) {
       s.dtheta_b_rad = remap(s.dtheta_b_rad, a.csv_axes);
       s.dvel_b_mps = remap(s.dvel_b_mps, a.csv_axes);
     }
-    in.description = a.imu_csv;
+    char note[256];
+    std::snprintf(note, sizeof note, "%ld malformed lines and %ld repeated counters skipped; counter rate from %s",
+                  rep.skipped_lines, rep.skipped_counter, rep.rate_source.c_str());
+    in.imu_note = note;
   } else {
-    if (in.config.imu_path.empty()) throw InputError("ldv", 0, "give --kfgins-config FILE, or --imu FILE (or --imu-csv FILE --imu-tag FILE)");
-    in.imu = read_kfgins_imu(in.config.imu_path);
-    in.description = in.config.imu_path;
+    ImuReadReport rep;
+    in.imu = read_kfgins_imu(imu_path, &rep);
+    calibrate();
+    in.imu_note = std::to_string(rep.skipped_duplicates) + " duplicates skipped, " + std::to_string(rep.gaps) + " gaps";
   }
-  if (!a.rtklib_pos.empty()) {
-    for (const gnss::GnssSolution& s : gnss::read_rtklib_pos(a.rtklib_pos)) in.gnss.push_back(s.fix);
-    in.description += " + " + a.rtklib_pos;
+  if (cal) {
+    in.imu_note += "; calibration " + cal_path + " applied";
+    const std::string priors = take_priors_from(*cal, in.config, in.options);
+    if (!priors.empty()) in.imu_note += " (its sigmas are the prior std of " + priors + ")";
+  }
+  for (ImuIncrement& s : in.imu) s.t_s += imu_time_shift_s;
+  in.description = imu_path;
+
+  const std::string& gnss_path = in.config.gnss_path;
+  if (gnss_path.empty()) throw InputError("ldv", 0, "give --kfgins-config FILE, or --gnss FILE (or --pos FILE)");
+  if (!a.rtklib_pos.empty() || ends_with(gnss_path, ".pos")) {
+    const auto sols = gnss::read_rtklib_pos(gnss_path);
+    for (const gnss::GnssSolution& s : sols) {
+      GnssFix f = s.fix;
+      f.pos.h_m += height_offset_m;
+      if (f.quality != GnssQuality::kFixed && float_std_min_m > 0) f.pos_std_ned_m = f.pos_std_ned_m.cwiseMax(float_std_min_m);
+      if (!in.gnss.empty() && f.t_s <= in.gnss.back().t_s) continue;  // repeated epochs
+      in.gnss.push_back(f);
+    }
+    if (in.gnss.empty()) throw InputError(gnss_path, 0, "no solutions in the RTKLIB .pos file");
+    in.gps_week = sols.front().time.week;
   } else {
-    if (in.config.gnss_path.empty()) throw InputError("ldv", 0, "give --kfgins-config FILE, or --gnss FILE (or --pos FILE)");
-    in.gnss = read_kfgins_gnss(in.config.gnss_path);
-    in.description += " + " + in.config.gnss_path;
+    in.gnss = read_kfgins_gnss(gnss_path);
   }
+  in.description += " + " + gnss_path;
   return in;
 }
 

@@ -1,6 +1,22 @@
 #pragma once
-// The inputs `ldv nav` takes (a KF-GINS configuration, file overrides, model changes), loaded once for
-// the assessment commands; also the real walk's layout (IMU CSV + RTKLIB tags, RTKLIB .pos).
+// The file inputs of `ldv nav`, `ldv outage` and `ldv diagnose` (a KF-GINS configuration, file overrides,
+// model changes), loaded in one place. Besides KF-GINS text files, the IMU may be a time-tagged CSV (the real
+// walk's layout: a path ending in .csv, its RTKLIB tag file beside it as FILE.tag) and the GNSS an RTKLIB
+// .pos file (a path ending in .pos), given on the command line or as imupath / gnsspath in the configuration.
+// Adjustments, from the command line or else the configuration's `ldv:` section:
+//   pos_height_offset_m  added to .pos heights (the geoid separation when the file gives height above MSL)
+//   float_std_min_m      floor of the position std of .pos solutions that are not RTK-fixed
+//   imu_time_shift_s     added to every IMU time stamp (a known IMU latency)
+//   calibration          an `ldv calib static` calibration file (toolbox/calib/README.md) applied to every IMU
+//                        increment; a relative path resolves like imupath (working directory, else beside the
+//                        configuration). Command line: --calibration FILE (relative to the working directory).
+// The calibration is applied in the axes the file was recorded in (the device's, which are the ones
+// `ldv calib static` saw in its log), before --csv-axes turns a tagged CSV into front-right-down:
+//   true = M^-1 (meas - bias * dt), M = (I + diag(scale) + N(misalignment)) C_b_s   (docs/effects.md)
+// When the calibration carries sigmas (all three axes > 0) they become the prior std of the filter's gyro_bias,
+// accel_bias, gyro_scale and accel_scale blocks, unless the configuration gives that prior (initbgstd,
+// initbastd, initsgstd, initsastd): after the calibration, what is left of those errors is its uncertainty.
+// NavInputs::imu_note says what was applied.
 #include <string>
 #include <vector>
 
@@ -21,6 +37,10 @@ struct NavInputArgs {
   // The tagged CSV's axes into front-right-down: each entry is +-1..3 (device axis, sign), e.g. the
   // walk's x-forward, y-left, z-up device: {1, -2, -3}.
   std::vector<int> csv_axes = {1, 2, 3};
+  std::string calibration;         // IMU calibration file (overrides the configuration's ldv.calibration)
+  // kUnset: take the configuration's ldv: value (default 0).
+  double pos_height_offset_m = kUnset, float_std_min_m = kUnset, imu_time_shift_s = kUnset;
+  static constexpr double kUnset = -1e300;
 };
 
 struct NavInputs {
@@ -29,6 +49,8 @@ struct NavInputs {
   std::vector<ImuIncrement> imu;
   std::vector<GnssFix> gnss;
   std::string description;  // one line for the log
+  std::string imu_note;     // what the IMU reader skipped or assumed
+  int gps_week = -1;        // from a .pos file, else -1
 };
 
 // Throws InputError naming what is missing or wrong.

@@ -2,6 +2,7 @@
 // physical effect, add it, watch the error fall (DESIGN.md section 3; toolbox/diagnose/README.md).
 //   ldv diagnose --kfgins-config FILE.yaml [--model NAME] [--add EFFECT]... [--drop EFFECT]...
 //                [--json OUT.json] [--truth truth.nav] [--plots DIR]
+// Inputs as `ldv nav` takes them from files (KF-GINS text, tagged IMU CSV, RTKLIB .pos).
 #include <iostream>
 #include <memory>
 
@@ -14,40 +15,37 @@
 #include "toolbox/diagnose/report_json.hpp"
 #include "toolbox/diagnose/report_text.hpp"
 #include "tools/ldv/command_registry.hpp"
+#include "tools/ldv/nav_input_options.hpp"
 
 namespace {
 using namespace ldv;
 
 struct DiagnoseArgs {
-  std::string config, imu, gnss, model, json, truth, plots;
-  std::vector<std::string> add, drop;
+  assess::NavInputArgs inputs;
+  std::string json, truth, plots;
   int max_add = 3;
   double alpha = 0.05, bandwidth_s = 120.0;
   bool quiet = false;
 };
 
 void run_diagnose(const DiagnoseArgs& a) {
+  assess::NavInputs loaded = assess::load_nav_inputs(a.inputs);
   diag::DiagnoseInputs in;
-  in.cfg = load_kfgins_config(a.config);
-  if (!a.imu.empty()) in.cfg.imu_path = a.imu;
-  if (!a.gnss.empty()) in.cfg.gnss_path = a.gnss;
+  in.cfg = loaded.config;
+  in.imu = std::move(loaded.imu);
+  in.gnss = std::move(loaded.gnss);
   diag::DiagnoseOptions opt;
-  opt.model = est::options_from_kfgins(in.cfg);
   // The model under test: --model, else ldv.model, else the KF-GINS equivalent (kfgins21).
-  if (!a.model.empty()) opt.model.model = a.model;
-  opt.model.add.insert(opt.model.add.end(), a.add.begin(), a.add.end());
-  opt.model.drop.insert(opt.model.drop.end(), a.drop.begin(), a.drop.end());
+  opt.model = loaded.options;
   try {
     est::resolve_model(opt.model.model, opt.model.add, opt.model.drop);
   } catch (const std::invalid_argument& e) {
-    throw InputError(a.config, 0, e.what());
+    throw InputError(a.inputs.config, 0, e.what());
   }
   opt.max_added = a.max_add;
   opt.screening.alpha = a.alpha;
   opt.screening.bandwidth_s = a.bandwidth_s;
   opt.verbose = !a.quiet;
-  in.imu = read_kfgins_imu(in.cfg.imu_path);
-  in.gnss = read_kfgins_gnss(in.cfg.gnss_path);
   if (!a.truth.empty()) in.truth = read_nav(a.truth);
 
   const diag::Diagnosis d = diag::diagnose(in, opt);
@@ -62,12 +60,7 @@ void run_diagnose(const DiagnoseArgs& a) {
 void add_diagnose_command(CLI::App& app) {
   auto args = std::make_shared<DiagnoseArgs>();
   CLI::App* c = app.add_subcommand("diagnose", "find the physical effect the model is missing, add it, show the error fall");
-  c->add_option("--kfgins-config", args->config, "KF-GINS YAML configuration (inputs, noise, initial state)")->required();
-  c->add_option("--imu", args->imu, "IMU increments (KF-GINS imu.txt), overrides the config");
-  c->add_option("--gnss", args->gnss, "GNSS solutions (KF-GINS gnss.txt), overrides the config");
-  c->add_option("--model", args->model, "model under test: ins15 | kfgins21 | geoldv51 (default ldv.model or kfgins21)");
-  c->add_option("--add", args->add, "add an effect to the model under test (repeatable)");
-  c->add_option("--drop", args->drop, "drop an effect from the model under test (repeatable)");
+  cli::add_nav_input_options(c, args->inputs, /*config_required=*/true);
   c->add_option("--json", args->json, "write the diagnosis as JSON");
   c->add_option("--truth", args->truth, "truth .nav (KF-GINS layout, IMU centre): navigation error before/after");
   c->add_option("--plots", args->plots, "write gnuplot PNGs (and their data and scripts) into this folder");

@@ -1,10 +1,12 @@
 // `ldv nav`: the GPS/INS filter over files (DESIGN.md section 2; estimator/README.md).
 //   ldv nav --kfgins-config FILE.yaml [--model NAME] [--add EFFECT]... [--drop EFFECT]... [--out FILE.nav]
 //   ldv nav --imu imu.txt --gnss gnss.txt [--lever x y z] ...
-//   ldv nav --imu-csv imu.csv [--imu-tag imu.csv.tag] --pos rtk.pos [--pos-height-offset N] ...   (the walk)
+//   ldv nav --imu-csv imu.csv [--imu-tag imu.csv.tag] --pos rtk.pos [--pos-height-offset N] ...   (the walk;
+//            or a config whose imupath ends in .csv and gnsspath in .pos: tests/estimator/data/walk_0827_mems.yaml)
 //   ldv nav --lcm-log FILE.lcm --kfgins-config FILE.yaml   (replays the live fusion service's engine)
 // Inputs: IMU from KF-GINS imu.txt (--imu or the config) or a time-tagged CSV (--imu-csv); GNSS from KF-GINS
-// gnss.txt (--gnss or the config) or an RTKLIB .pos (--pos); or both from an LCM log (--lcm-log).
+// gnss.txt (--gnss or the config) or an RTKLIB .pos (--pos); or both from an LCM log (--lcm-log). IMU files are
+// corrected by an `ldv calib static` calibration (--calibration or ldv.calibration; toolbox/assess/nav_inputs.hpp).
 // Outputs: FILE.nav (KF-GINS layout, one line per IMU sample), FILE_std.txt, FILE_innovations.txt.
 #include <chrono>
 #include <cstdio>
@@ -22,6 +24,7 @@
 #include "estimator/run/run_navigation.hpp"
 #include "services/fusion/log_replay.hpp"
 #include "services/gnss_link/protocols/rtklib_solution.hpp"
+#include "toolbox/assess/nav_inputs.hpp"
 #include "tools/ldv/command_registry.hpp"
 
 namespace {
@@ -29,15 +32,16 @@ namespace fs = std::filesystem;
 using namespace ldv;
 
 struct NavArgs {
-  std::string config, imu, gnss, pos, lcm_log, imu_csv, imu_tag, out, model;
+  std::string config, imu, gnss, pos, lcm_log, imu_csv, imu_tag, out, model, calibration;
   std::vector<std::string> add, drop;
   std::vector<double> lever;
   int week = -1;
   double std_rate_hz = 10.0;
-  double pos_height_offset_m = 0.0;
-  double float_std_min_m = 0.0;
-  double align_speed_mps = -1.0;
-  int align_hypotheses = 1;
+  double pos_height_offset_m = assess::NavInputArgs::kUnset;  // unset: the config's ldv: value
+  double float_std_min_m = assess::NavInputArgs::kUnset;
+  double imu_time_shift_s = assess::NavInputArgs::kUnset;
+  double align_speed_mps = -1.0;  // <= 0: the config's ldv.align_speed_mps
+  int align_hypotheses = 0;       // 0: the config's ldv.align_hypotheses
   double history_s = 3.0;
   double align_wait_s = 1.0;
   bool quiet = false, print_options = false;
@@ -151,21 +155,6 @@ class NavOutputs {
 // RTKLIB .pos -> fixes (+ the GPS week of the first solution). Height offset: .pos files written with
 // the receiver's geoid model give height above mean sea level; add the geoid separation N to get the
 // ellipsoidal height the filter uses (h = H_msl + N).
-std::vector<GnssFix> read_pos_fixes(const NavArgs& a, int* week) {
-  std::vector<GnssFix> out;
-  const auto sols = gnss::read_rtklib_pos(a.pos);
-  for (const auto& s : sols) {
-    GnssFix f = s.fix;
-    f.pos.h_m += a.pos_height_offset_m;
-    if (f.quality != GnssQuality::kFixed && a.float_std_min_m > 0) f.pos_std_ned_m = f.pos_std_ned_m.cwiseMax(a.float_std_min_m);
-    if (!out.empty() && f.t_s <= out.back().t_s) continue;  // repeated epochs
-    out.push_back(f);
-  }
-  if (out.empty()) throw InputError(a.pos, 0, "no solutions in the RTKLIB .pos file");
-  if (week) *week = sols.front().time.week;
-  return out;
-}
-
 int week_from_config(const KfGinsConfig& cfg) {
   if (!cfg.ldv.IsDefined() || cfg.ldv.IsNull() || !cfg.ldv["week"]) return -1;
   try {
@@ -195,6 +184,21 @@ void print_summary(const char* what, long imu_samples, double t0, double t1, lon
                ft.covariance_resets, ft.state_resets, ft.imu_rejected, ft.imu_gaps,
                est::describe_status(f.status()).c_str(), elapsed, imu_samples / std::max(elapsed, 1e-9),
                nav_path.c_str());
+}
+
+// Command-line alignment settings override the configuration's ldv: keys.
+void apply_alignment_args(const NavArgs& a, est::FilterOptions& opt) {
+  if (a.align_speed_mps > 0) opt.align_speed_mps = a.align_speed_mps;
+  if (a.align_hypotheses > 0) opt.align_hypotheses = a.align_hypotheses;
+}
+
+// Builds the filter once to validate the model (unknown model or effect names -> InputError).
+std::unique_ptr<est::NavFilter> check_model(const NavArgs& a, const est::FilterOptions& opt) {
+  try {
+    return std::make_unique<est::NavFilter>(opt);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(a.config.empty() ? "ldv nav" : a.config, 0, e.what());
+  }
 }
 
 void run_lcm_log(const NavArgs& a, const KfGinsConfig& cfg, est::FilterOptions opt, const est::AlignmentOptions& ao) {
@@ -230,8 +234,6 @@ void run_lcm_log(const NavArgs& a, const KfGinsConfig& cfg, est::FilterOptions o
 }
 
 void run_nav(const NavArgs& a) {
-  KfGinsConfig cfg;
-  est::FilterOptions opt;
   const bool imu_given = !a.imu.empty() || !a.imu_csv.empty();
   const bool gnss_given = !a.gnss.empty() || !a.pos.empty();
   if (!a.imu.empty() && !a.imu_csv.empty()) throw InputError("ldv nav", 0, "give one of --imu and --imu-csv");
@@ -239,63 +241,65 @@ void run_nav(const NavArgs& a) {
   if (!a.lcm_log.empty() && (imu_given || gnss_given))
     throw InputError("ldv nav", 0, "--lcm-log holds both IMU and GNSS: do not combine it with --imu/--gnss/--pos");
   if (!a.imu_tag.empty() && a.imu_csv.empty()) throw InputError("ldv nav", 0, "--imu-tag goes with --imu-csv");
-  if (!a.config.empty()) {
-    cfg = load_kfgins_config(a.config);
-    opt = est::options_from_kfgins(cfg);
-  } else {
-    if (a.lcm_log.empty() && (!imu_given || !gnss_given))
-      throw InputError("ldv nav", 0,
-                       "give --kfgins-config FILE, or an IMU input (--imu FILE or --imu-csv FILE) and a GNSS input "
-                       "(--gnss FILE or --pos FILE), or --lcm-log FILE");
-    cfg.output_path = ".";
-  }
-  if (!a.imu.empty()) cfg.imu_path = a.imu;
-  if (!a.imu_csv.empty()) cfg.imu_path = a.imu_csv;
-  if (!a.gnss.empty()) cfg.gnss_path = a.gnss;
-  if (!a.pos.empty()) cfg.gnss_path = a.pos;
-  if (a.lever.size() == 3) opt.lever_arm.init = Vec3(a.lever[0], a.lever[1], a.lever[2]);
-  if (!a.model.empty()) opt.model = a.model;
-  opt.add.insert(opt.add.end(), a.add.begin(), a.add.end());
-  opt.drop.insert(opt.drop.end(), a.drop.begin(), a.drop.end());
-  est::AlignmentOptions ao = est::alignment_options_from(opt);
-  if (a.align_speed_mps > 0) ao.speed_min_mps = a.align_speed_mps;
-  ao.course_hypotheses = std::max(1, a.align_hypotheses);
+  if (!a.calibration.empty() && !a.lcm_log.empty())
+    throw InputError("ldv nav", 0, "--calibration goes with IMU files: a log's IMU messages are imu_acq's, already calibrated "
+                                   "by its calibration_file");
+  if (a.config.empty() && a.lcm_log.empty() && (!imu_given || !gnss_given))
+    throw InputError("ldv nav", 0,
+                     "give --kfgins-config FILE, or an IMU input (--imu FILE or --imu-csv FILE) and a GNSS input "
+                     "(--gnss FILE or --pos FILE), or --lcm-log FILE");
 
-  std::unique_ptr<est::NavFilter> filter;
-  try {
-    filter = std::make_unique<est::NavFilter>(opt);
-  } catch (const std::invalid_argument& e) {
-    throw InputError(a.config.empty() ? "ldv nav" : a.config, 0, e.what());
-  }
-  if (!a.quiet && a.print_options) opt.print(std::cerr);
   if (!a.lcm_log.empty()) {
-    filter.reset();
-    run_lcm_log(a, cfg, opt, ao);
+    KfGinsConfig cfg;
+    est::FilterOptions opt;
+    if (!a.config.empty()) {
+      cfg = load_kfgins_config(a.config);
+      opt = est::options_from_kfgins(cfg);
+    } else {
+      cfg.output_path = ".";
+    }
+    if (a.lever.size() == 3) opt.lever_arm.init = Vec3(a.lever[0], a.lever[1], a.lever[2]);
+    if (!a.model.empty()) opt.model = a.model;
+    opt.add.insert(opt.add.end(), a.add.begin(), a.add.end());
+    opt.drop.insert(opt.drop.end(), a.drop.begin(), a.drop.end());
+    apply_alignment_args(a, opt);
+    check_model(a, opt);
+    if (!a.quiet && a.print_options) opt.print(std::cerr);
+    run_lcm_log(a, cfg, opt, est::alignment_options_from(opt));
     return;
   }
 
   const auto t_begin = std::chrono::steady_clock::now();
-  int week = a.week;
-  if (week < 0) week = week_from_config(cfg);
-  std::vector<ImuIncrement> imu;
-  std::string imu_note;
-  if (!a.imu_csv.empty()) {
-    TaggedImuCsvReport rep;
-    imu = read_tagged_imu_csv(a.imu_csv, a.imu_tag.empty() ? a.imu_csv + ".tag" : a.imu_tag, {}, &rep);
-    imu_note = std::to_string(rep.skipped_lines) + " malformed lines and " + std::to_string(rep.skipped_counter) +
-               " repeated counters skipped";
-  } else {
-    ImuReadReport rep;
-    imu = read_kfgins_imu(cfg.imu_path, &rep);
-    imu_note = std::to_string(rep.skipped_duplicates) + " duplicates skipped, " + std::to_string(rep.gaps) + " gaps";
-  }
-  int pos_week = -1;
-  const std::vector<GnssFix> gnss = a.pos.empty() ? read_kfgins_gnss(cfg.gnss_path) : read_pos_fixes(a, &pos_week);
-  if (week < 0) week = pos_week >= 0 ? pos_week : 0;
+  assess::NavInputArgs ia;
+  ia.config = a.config;
+  ia.imu = a.imu;
+  ia.gnss = a.gnss;
+  ia.imu_csv = a.imu_csv;
+  ia.imu_tag = a.imu_tag;
+  ia.rtklib_pos = a.pos;
+  ia.model = a.model;
+  ia.add = a.add;
+  ia.drop = a.drop;
+  ia.lever = a.lever;
+  ia.pos_height_offset_m = a.pos_height_offset_m;
+  ia.float_std_min_m = a.float_std_min_m;
+  ia.imu_time_shift_s = a.imu_time_shift_s;
+  ia.calibration = a.calibration;
+  assess::NavInputs in = assess::load_nav_inputs(ia);
+  if (a.config.empty()) in.config.output_path = ".";
+  est::FilterOptions& opt = in.options;
+  apply_alignment_args(a, opt);
+  std::unique_ptr<est::NavFilter> filter = check_model(a, opt);
+  if (!a.quiet && a.print_options) opt.print(std::cerr);
+  const est::AlignmentOptions ao = est::alignment_options_from(opt);
 
-  const std::string nav_path = default_nav_path(a, cfg);
+  int week = a.week;
+  if (week < 0) week = week_from_config(in.config);
+  if (week < 0) week = in.gps_week >= 0 ? in.gps_week : 0;
+  const std::string nav_path = default_nav_path(a, in.config);
   if (!a.quiet) {
-    std::fprintf(stderr, "ldv nav: %zu IMU samples (%s), %zu GNSS fixes\n", imu.size(), imu_note.c_str(), gnss.size());
+    std::fprintf(stderr, "ldv nav: %zu IMU samples (%s), %zu GNSS fixes\n", in.imu.size(), in.imu_note.c_str(),
+                 in.gnss.size());
     std::fprintf(stderr, "state layout (%d states):\n%s", filter->layout().size(), filter->layout().describe().c_str());
   }
 
@@ -303,11 +307,11 @@ void run_nav(const NavArgs& a) {
   est::RunCallbacks cb;
   cb.on_epoch = [&](const est::NavFilter& f) { out.epoch(f, week); };
   cb.on_innovation = [&](const est::InnovationRecord& r) { out.innovation(r); };
-  const bool show_progress = !a.quiet && imu.size() > 100000;
+  const bool show_progress = !a.quiet && in.imu.size() > 100000;
   if (show_progress)
     cb.on_progress = [](double done) { std::fprintf(stderr, "\rldv nav: %3.0f %%", done * 100.0); };
 
-  const est::RunSummary sum = est::run_navigation(imu, gnss, cfg, *filter, cb, &ao);
+  const est::RunSummary sum = est::run_navigation(in.imu, in.gnss, in.config, *filter, cb, &ao);
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
   if (show_progress) std::fprintf(stderr, "\r");
   if (!a.quiet)
@@ -322,6 +326,11 @@ void add_nav_command(CLI::App& app) {
   c->add_option("--imu", args->imu, "IMU increments (KF-GINS imu.txt), overrides the config");
   c->add_option("--imu-csv", args->imu_csv, "IMU rates as CSV ax,ay,az[g],gx,gy,gz[deg/s],counter[ms] with an RTKLIB tag file");
   c->add_option("--imu-tag", args->imu_tag, "RTKLIB time-tag file of --imu-csv (default: FILE.tag)");
+  c->add_option("--imu-time-shift", args->imu_time_shift_s,
+                "added to every IMU time stamp [s]: a known IMU latency (the time_offset effect estimates an unknown one)");
+  c->add_option("--calibration", args->calibration,
+                "IMU calibration file of `ldv calib static`, applied to every increment in the device axes "
+                "(default ldv.calibration; toolbox/calib/README.md)");
   c->add_option("--gnss", args->gnss, "GNSS solutions (7- or 13-column KF-GINS gnss.txt), overrides the config");
   c->add_option("--pos", args->pos, "GNSS solutions from an RTKLIB .pos file, overrides the config");
   c->add_option("--pos-height-offset", args->pos_height_offset_m,
@@ -340,10 +349,10 @@ void add_nav_command(CLI::App& app) {
   c->add_option("--week", args->week, "GPS week written in the .nav (default ldv.week, the .pos week, or 0)");
   c->add_option("--std-rate", args->std_rate_hz, "rate of the _std.txt rows [Hz] (0: every IMU sample)");
   c->add_option("--align-speed", args->align_speed_mps,
-                "alignment without a given state: GNSS speed [m/s] above which the course gives the heading (default 2)");
+                "alignment without a given state: GNSS speed [m/s] above which the course gives the heading (default ldv.align_speed_mps, else 2)");
   c->add_option("--align-hypotheses", args->align_hypotheses,
-                "unknown mounting (hand-held): try N body headings 360/N apart against the GNSS track (default 1: "
-                "body x along the motion; 12 for a hand-held IMU)");
+                "unknown mounting (hand-held): try N body headings 360/N apart against the GNSS track (default "
+                "ldv.align_hypotheses, else 1: body x along the motion; 12 for a hand-held IMU)");
   c->add_flag("--quiet", args->quiet, "no progress or summary on stderr");
   c->add_flag("--print-options", args->print_options, "print the filter options");
   c->callback([args] { run_nav(*args); });

@@ -11,6 +11,7 @@
 #include "toolbox/assess/outage_run.hpp"
 #include "toolbox/assess/outage_table.hpp"
 #include "tools/ldv/command_registry.hpp"
+#include "tools/ldv/nav_input_options.hpp"
 
 namespace {
 using namespace ldv;
@@ -44,25 +45,10 @@ void run_outage(OutageArgs& a) {
   }
 }
 
-// The input options of `ldv nav`, plus the tagged-CSV / RTKLIB layout of the real walk.
-void add_nav_input_options(CLI::App* c, assess::NavInputArgs& in) {
-  c->add_option("--kfgins-config", in.config, "KF-GINS YAML configuration (as ldv nav)");
-  c->add_option("--imu", in.imu, "IMU increments (KF-GINS imu.txt), overrides the config");
-  c->add_option("--gnss", in.gnss, "GNSS solutions (KF-GINS gnss.txt), overrides the config");
-  c->add_option("--imu-csv", in.imu_csv, "tagged IMU CSV (ax,ay,az [g], gx,gy,gz [deg/s], counter [ms])");
-  c->add_option("--imu-tag", in.imu_tag, "RTKLIB time-tag file of --imu-csv");
-  c->add_option("--csv-axes", in.csv_axes, "device axes to front-right-down, e.g. 1 -2 -3 (default 1 2 3)")->expected(3);
-  c->add_option("--pos", in.rtklib_pos, "GNSS solutions as an RTKLIB .pos file");
-  c->add_option("--model", in.model, "ins15 | kfgins21 | geoldv51");
-  c->add_option("--add", in.add, "add an effect block (repeatable)");
-  c->add_option("--drop", in.drop, "drop an effect block (repeatable)");
-  c->add_option("--lever", in.lever, "antenna lever arm x y z [m], body front-right-down")->expected(3);
-}
-
 void add_outage_command(CLI::App& app) {
   auto a = std::make_shared<OutageArgs>();
   CLI::App* c = app.add_subcommand("outage", "GNSS outages during manoeuvres: drift table (paper Table 12) and KF-GINS metric");
-  add_nav_input_options(c, a->inputs);
+  cli::add_nav_input_options(c, a->inputs);
   c->add_option("--truth", a->truth, "truth .nav (else the drift is measured against the uncut solution)");
   c->add_option("--lengths", a->run.lengths_s, "outage lengths [s]")->delimiter(',');
   c->add_option("--json", a->json, "write every outage, its drift curve and the table as JSON");
