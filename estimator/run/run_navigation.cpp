@@ -88,15 +88,54 @@ FilterOptions options_from_kfgins(const KfGinsConfig& cfg) {
   return o;
 }
 
+namespace {
+struct DataAlignment {
+  NavState state;
+  NavStd std;
+  std::string method;
+  size_t imu_index = 0, gnss_index = 0;  // the first IMU sample / fix not consumed by the alignment
+};
+
+// The aligner over imu[i...] and the fixes from gnss[g...] up to each IMU epoch; throws when it never aligns.
+DataAlignment align_from_data(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
+                              const KfGinsConfig& cfg, const AlignmentOptions& ao, size_t i, size_t g) {
+  const double t1 = cfg.end_time_s < 0 ? 1e300 : cfg.end_time_s;
+  Aligner aligner(ao);
+  for (; i < imu.size() && imu[i].t_s <= t1 && !aligner.aligned(); ++i) {
+    aligner.add_imu(imu[i]);
+    for (; g < gnss.size() && gnss[g].t_s <= imu[i].t_s; ++g) aligner.add_gnss(gnss[g]);
+  }
+  if (!aligner.aligned())
+    throw InputError(cfg.gnss_path, 0,
+                     "could not align: no static period with usable gyros and no GNSS speed above " +
+                         std::to_string(ao.speed_min_mps) + " m/s "
+                     "(give initpos/initvel/initatt in the configuration)");
+  return {aligner.state(), aligner.std(), aligner.method(), i, g};
+}
+
+size_t first_imu_index(const std::vector<ImuIncrement>& imu, const KfGinsConfig& cfg) {
+  const double t0 = cfg.start_time_s, t1 = cfg.end_time_s < 0 ? 1e300 : cfg.end_time_s;
+  auto first = std::lower_bound(imu.begin(), imu.end(), t0, [](const ImuIncrement& a, double t) { return a.t_s < t; });
+  const size_t i = static_cast<size_t>(first - imu.begin());
+  if (i >= imu.size() || imu[i].t_s > t1) throw InputError(cfg.imu_path, 0, "no IMU samples between starttime and endtime");
+  return i;
+}
+}  // namespace
+
+double initialisation_epoch(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
+                            const KfGinsConfig& cfg, const AlignmentOptions& alignment) {
+  const size_t i = first_imu_index(imu, cfg);
+  if (cfg.init_pos && cfg.init_vel_n_mps && cfg.init_rpy_rad) return std::max(cfg.start_time_s, imu[i].t_s - imu[i].dt_s);
+  return align_from_data(imu, gnss, cfg, alignment, i, 0).state.t_s;
+}
+
 RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
                           const KfGinsConfig& cfg, NavFilter& filter, const RunCallbacks& cb,
                           const AlignmentOptions* alignment) {
   RunSummary sum;
   const double t0 = cfg.start_time_s, t1 = cfg.end_time_s < 0 ? 1e300 : cfg.end_time_s;
-  auto first = std::lower_bound(imu.begin(), imu.end(), t0, [](const ImuIncrement& a, double t) { return a.t_s < t; });
-  size_t i = static_cast<size_t>(first - imu.begin());
+  size_t i = first_imu_index(imu, cfg);
   size_t g = 0;
-  if (i >= imu.size() || imu[i].t_s > t1) throw InputError(cfg.imu_path, 0, "no IMU samples between starttime and endtime");
 
   const bool given = cfg.init_pos && cfg.init_vel_n_mps && cfg.init_rpy_rad;
   if (given) {
@@ -114,19 +153,12 @@ RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vecto
     sum.initialisation = "given";
   } else {
     const AlignmentOptions ao = alignment ? *alignment : alignment_options_from(filter.options());
-    Aligner aligner(ao);
-    for (; i < imu.size() && imu[i].t_s <= t1 && !aligner.aligned(); ++i) {
-      aligner.add_imu(imu[i]);
-      for (; g < gnss.size() && gnss[g].t_s <= imu[i].t_s; ++g) aligner.add_gnss(gnss[g]);
-    }
-    if (!aligner.aligned())
-      throw InputError(cfg.gnss_path, 0,
-                       "could not align: no static period with usable gyros and no GNSS speed above " +
-                           std::to_string(ao.speed_min_mps) + " m/s "
-                       "(give initpos/initvel/initatt in the configuration)");
-    NavState s0 = aligner.state();
-    NavStd sd0 = aligner.std();
-    sum.initialisation = aligner.method();
+    const DataAlignment al = align_from_data(imu, gnss, cfg, ao, i, g);
+    i = al.imu_index;
+    g = al.gnss_index;
+    NavState s0 = al.state;
+    NavStd sd0 = al.std;
+    sum.initialisation = al.method;
     if (ao.course_hypotheses > 1 && sum.initialisation.find("course") != std::string::npos) {
       // Unknown mounting: which body heading matches the GNSS track over the next course_trial_s?
       const double step = 2.0 * kPi / ao.course_hypotheses;

@@ -43,4 +43,9 @@ RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vecto
                           const KfGinsConfig& cfg, NavFilter& filter, const RunCallbacks& callbacks,
                           const AlignmentOptions* alignment = nullptr);
 
+// The epoch run_navigation() will start the filter at: the given state's, or where the alignment from the data
+// succeeds (the same aligner, without its heading trials). Throws as run_navigation() does.
+double initialisation_epoch(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
+                            const KfGinsConfig& cfg, const AlignmentOptions& alignment);
+
 }  // namespace ldv::est

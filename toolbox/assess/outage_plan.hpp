@@ -9,7 +9,7 @@
 namespace ldv::assess {
 
 struct OutagePlanOptions {
-  double converge_s = 120.0;         // no outage starts earlier than this after the first fix
+  double converge_s = 120.0;         // no outage starts earlier than this after the first fix it is given
   double recovery_s = 120.0;         // GNSS kept between the end of one outage and the next start
   double manoeuvre_accel_mps2 = 0.3; // horizontal acceleration (incl. centripetal) that counts as a manoeuvre
   double min_speed_mps = 1.0;        // moving

@@ -1,5 +1,7 @@
 #include "toolbox/assess/outage_run.hpp"
 
+#include "estimator/run/alignment_options_from.hpp"
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -10,6 +12,7 @@
 #include <thread>
 
 #include "common/io/input_error.hpp"
+#include "estimator/run/alignment_options_from.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "toolbox/assess/filter_checkpoint.hpp"
 #include "toolbox/assess/solution_comparison.hpp"
@@ -138,8 +141,21 @@ OutageRun run_outages(const std::vector<ImuIncrement>& imu, const std::vector<Gn
   run.reference = truth.empty() ? "uncut solution" : "truth";
   run.threads = o.threads > 0 ? o.threads : std::max(1u, std::thread::hardware_concurrency());
   const double t_data_end = cfg.end_time_s > 0 ? std::min(cfg.end_time_s, imu.back().t_s) : imu.back().t_s;
-  const std::vector<OutageWindow> plan = plan_outages(gnss, o.lengths_s, t_data_end, o.plan);
-  if (plan.empty()) throw std::invalid_argument("outage: the run is too short or never moves for these outage lengths");
+  // Convergence counts from the filter's start (a run that aligns while moving starts late).
+  const double t_init = est::initialisation_epoch(imu, gnss, cfg, est::alignment_options_from(fo));
+  std::vector<GnssFix> after_init;
+  for (const GnssFix& f : gnss)
+    if (f.t_s >= t_init) after_init.push_back(f);
+  if (after_init.empty()) throw std::invalid_argument("outage: no GNSS after the filter's initialisation");
+  const std::vector<OutageWindow> plan = plan_outages(after_init, o.lengths_s, t_data_end, o.plan);
+  if (plan.empty()) {
+    char buf[320];
+    std::snprintf(buf, sizeof buf,
+                  "outage: no outage fits: %.0f s of GNSS after the initialisation, outages start %.0f s later (--converge) when "
+                  "faster than %.1f m/s (--min-speed), %.0f s apart (--recovery); lower these for a short or slow run",
+                  after_init.back().t_s - after_init.front().t_s, o.plan.converge_s, o.plan.min_speed_mps, o.plan.recovery_s);
+    throw std::invalid_argument(buf);
+  }
   {
     char buf[160];
     std::snprintf(buf, sizeof buf, "outage: %zu outages planned, drift against the %s", plan.size(), run.reference.c_str());
