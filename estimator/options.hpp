@@ -35,6 +35,10 @@ struct ZuptOptions {
   double f_std_mps2 = 0.05;        // std of |f| over the window below this
   double omega_max_rad_s = 0.5 * kDegToRad;  // mean |omega| over the window below this
   double speed_max_mps = 0.3;      // and the filter's own speed below this (no false ZUPT at constant velocity)
+  // and the horizontal specific force (navigation frame, low-passed) below this: braking to a stop
+  // keeps |f| ~ g and w ~ 0 (the detector fires) but not f_h ~ 0; a false ZUPT there, deep in a GNSS outage,
+  // drags the position through its correlation with the velocity.
+  double f_horizontal_max_mps2 = 0.15;
   double period_s = 0.2;           // apply at most this often
   double std_mps = 0.01;           // measurement noise of the zero velocity
 };

@@ -62,13 +62,14 @@ struct Reader {
   }
 };
 
+}  // namespace
+
 std::string resolve_data_path(const std::string& p, const std::string& config_path) {
   if (p.empty() || fs::path(p).is_absolute() || fs::exists(p)) return p;
   const fs::path beside = fs::path(config_path).parent_path() / p;
   if (fs::exists(beside)) return beside.lexically_normal().string();
   return p;
 }
-}  // namespace
 
 KfGinsConfig load_kfgins_config(const std::string& path) {
   YAML::Node root;

@@ -149,12 +149,15 @@ void NavFilter::process_imu(const ImuIncrement& raw) {
 
   const MechanizationStep& st = c_.mech.last();
   const bool stat = c_.detector.add(st.dt_s, st.omega_ib_b_rad_s, st.f_b_mps2);
+  if (st.dt_s > 0.0)
+    c_.f_n_smooth_mps2 += std::min(1.0, st.dt_s / (0.25 * opt_.zupt.window_s)) * (st.dv_sf_n_mps / st.dt_s - c_.f_n_smooth_mps2);
   c_.status = stat ? (c_.status | kStatusZuptActive) : (c_.status & ~kStatusZuptActive);
   if (c_.acc_T_s >= opt_.cov_period_s) flush_covariance();
   // ZUPT only without recent GNSS: with RTK it adds nothing, and the detector cannot tell a smooth
   // start from rest (|f| ~ g) from standing still; the gate catches the rest.
   const bool gnss_recent = c_.nav.t_s - c_.last_gnss_t_s < 1.0;
   if (opt_.zupt.enabled && stat && !gnss_recent && c_.nav.v_n_mps.norm() < opt_.zupt.speed_max_mps &&
+      c_.f_n_smooth_mps2.head<2>().norm() < opt_.zupt.f_horizontal_max_mps2 &&
       c_.nav.t_s - c_.last_zupt_t_s >= opt_.zupt.period_s) {
     flush_covariance();
     apply_measurement(zero_velocity_measurement(c_.nav, layout_, opt_.zupt.std_mps));

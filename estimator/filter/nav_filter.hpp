@@ -77,6 +77,7 @@ class NavFilter {
     Vec3 acc_dv_n = Vec3::Zero();
     Eigen::Matrix<double, 9, Eigen::Dynamic> acc_B;  // accumulated F_ne * dt
     StaticDetector detector{0.5, 0.05, 0.01};
+    Vec3 f_n_smooth_mps2 = Vec3::Zero();  // specific force in n, first-order low pass (window / 4: little lag)
     double last_zupt_t_s = -1e300;
     double last_gnss_t_s = -1e300;
     double last_health_t_s = -1e300;

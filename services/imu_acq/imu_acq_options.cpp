@@ -5,6 +5,9 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "common/formats/kfgins_config.hpp"
+#include "common/io/input_error.hpp"
+
 namespace ldv::imu {
 
 ImuAcqOptions load_imu_acq_options(const std::string& path) {
@@ -64,7 +67,18 @@ ImuAcqOptions load_imu_acq_options(const std::string& path) {
     constexpr double kDeg = std::numbers::pi / 180.0;
     o.correction.C_device_to_body = C_b_n_from_euler(Vec3(v[0], v[1], v[2]) * kDeg);
   }
-  if (y["calibration_file"]) o.calibration_file = y["calibration_file"].as<std::string>();
+  if (const auto c = y["calibration_file"]; c && !c.IsNull()) {
+    if (!c.IsScalar()) fail("calibration_file must be a path (\"\": none)");
+    o.calibration_file = resolve_data_path(c.Scalar(), path);
+  }
+  if (!o.calibration_file.empty()) {
+    try {
+      o.calibration = calib::load_calibration(o.calibration_file);
+    } catch (const InputError& e) {  // names the calibration file, line and key; say which setting led there
+      fail("calibration_file: " + std::string(e.what()));
+    }
+    o.correction.set_calibration(*o.calibration);
+  }
   if (const auto c = y["channels"]) {
     if (c["imu"]) o.imu_channel = c["imu"].as<std::string>();
     if (c["pps"]) o.pps_channel = c["pps"].as<std::string>();

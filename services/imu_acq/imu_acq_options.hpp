@@ -1,5 +1,6 @@
 #pragma once
 // imu_acq's configuration (deploy/config/imu_acq.yaml).
+#include <optional>
 #include <string>
 
 #include "services/gnss_link/input/byte_source_options.hpp"
@@ -29,12 +30,16 @@ struct ImuAcqOptions {
   LabelSide label_side = LabelSide::kAuto;
   StamperOptions stamper;
   double hist_bin_s = 2e-7;
-  ImuCorrection correction;
-  std::string calibration_file;  // reserved for `ldv calib` output (not applied yet)
+  ImuCorrection correction;  // mounting_rpy_deg, and the calibration below
+  // `ldv calib static` output, loaded into `correction` (a relative path: from the working directory, else
+  // beside the configuration file; stored resolved).
+  std::string calibration_file;
+  std::optional<calib::ImuCalibration> calibration;
   std::string imu_channel = "IMU", pps_channel = "IMU_PPS", timing_channel = "IMU_TIMING",
               label_channel = "GNSS_PPS";
 };
 
+// Throws std::runtime_error naming the file and key on a bad value (for the calibration file: both files).
 ImuAcqOptions load_imu_acq_options(const std::string& path);
 
 }  // namespace ldv::imu

@@ -66,8 +66,9 @@ int main(int argc, char** argv) {
   try {
     ImuAcqOptions o = load_imu_acq_options(config_path);
     if (!bus_url_override.empty()) o.bus_url = bus_url_override;
-    if (!o.calibration_file.empty())
-      spdlog::warn("imu_acq: calibration_file '{}' is not applied yet (hook: ImuCorrection)", o.calibration_file);
+    if (o.calibration)
+      spdlog::info("imu_acq: calibration {} applied in the device frame, then the mounting rotation ({})",
+                   o.calibration_file, o.calibration->description.empty() ? "no description" : o.calibration->description);
 
     ServiceRuntime rt("imu_acq", o.bus_url);
     auto source = io::make_byte_source(o.input);

@@ -74,9 +74,10 @@ TEST(OutageEngine, PerfectSensorsBarelyDrift) {
 
 TEST(OutageEngine, TacticalDriftHasTheClosedFormSizeAndStaysInTheEnvelope) {
   const auto& s = test::sim_drive("hg1700", 1500.0);
-  // ZUPT off: zero-velocity updates at stops inside outages currently shrink the filter's position sigma
-  // while the drift jumps (76 % inside at 120 s with them; reported to the estimator's owner).
-  const OutageRun run = outages(s, {60.0, 120.0}, false, false);
+  // ZUPT on: the drive stops inside some outages. Zero-velocity updates while still braking (|f| ~ g, w ~ 0)
+  // once dragged the position by tens of metres with a collapsed sigma (76 % inside at 120 s); a stop now also
+  // needs f_h ~ 0, and the stops shrink the drift (about 1-2 m after 120 s instead of 5-25 m without ZUPT).
+  const OutageRun run = outages(s, {60.0, 120.0}, false, true);
   const auto table = summarise_outages(run);
   ASSERT_EQ(table.size(), 2u);
   // Residual in-run errors of an HG1700 after RTK: bias instability 0.05 mg and 0.3 deg/h.

@@ -1,7 +1,10 @@
 // The calibration file and the library API that ldv nav / imu_acq use.
 #include <gtest/gtest.h>
 
+#include "common/formats/kfgins_config.hpp"
+
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 
 #include "common/io/input_error.hpp"
@@ -52,6 +55,35 @@ TEST(CalibrationFile, GivenMissingKeyThenInputErrorNamesFileAndKey) {
     EXPECT_NE(std::string(e.what()).find("bias_rad_s"), std::string::npos) << e.what();
   }
   EXPECT_THROW(load_calibration(::testing::TempDir() + "/does_not_exist.yaml"), InputError);
+}
+
+TEST(CalibrationFile, GivenValuesNoSensorHas_ThenInputErrorNamesLineAndKey) {
+  const std::string path = ::testing::TempDir() + "/cal_units.yaml";
+  const auto refused_at = [&](const std::string& accel_extra, const std::string& where) {
+    std::ofstream(path) << "format: ldv_imu_calibration_v1\ngyro:\n  bias_rad_s: [0, 0, 0]\n  scale_ppm: [0, 0, 0]\n"
+                           "  misalignment_rad: [0, 0, 0]\naccel:\n  bias_mps2: [0, 0, 0]\n  scale_ppm: [0, 0, 0]\n"
+                           "  misalignment_rad: [0, 0, 0]\n"
+                        << accel_extra;
+    try {
+      load_calibration(path);
+      ADD_FAILURE() << "accepted " << accel_extra;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(where), std::string::npos) << e.what();
+    }
+  };
+  refused_at("  frame_rotation_rad: [0, 0, 30]\n", "cal_units.yaml:10: 'accel.frame_rotation_rad': element 3 is 30");
+  refused_at("  bias_mps2_sigma: [0.1, -0.1, 0.1]\n", "cal_units.yaml:10: 'accel.bias_mps2_sigma'");
+  refused_at("  scale_ppm_sigma: [1, 2]\n", "cal_units.yaml:10: 'accel.scale_ppm_sigma': expected [x, y, z]");
+}
+
+TEST(CalibrationFile, GivenARelativePathInAConfig_ThenItIsFoundFromTheWorkingDirectoryElseBesideTheConfig) {
+  const std::string dir = ::testing::TempDir() + "/cal_resolve";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/imu_cal.yaml") << "x";
+  EXPECT_EQ(resolve_data_path("imu_cal.yaml", dir + "/kfgins.yaml"),
+            (std::filesystem::path(dir) / "imu_cal.yaml").lexically_normal().string());
+  EXPECT_EQ(resolve_data_path("/abs/cal.yaml", dir + "/kfgins.yaml"), "/abs/cal.yaml");
+  EXPECT_EQ(resolve_data_path("nowhere.yaml", dir + "/kfgins.yaml"), "nowhere.yaml");  // the error names it as given
 }
 
 }  // namespace

@@ -39,7 +39,7 @@ std::string calibration_path(const NavInputArgs& a, const KfGinsConfig& cfg) {
   const YAML::Node n = cfg.ldv["calibration"];
   if (!n.IsScalar() || n.Scalar().empty())
     throw InputError(cfg.config_path, n.Mark().line + 1, "key 'ldv.calibration': expected the path of a calibration file");
-  return calib::resolve_calibration_path(n.Scalar(), cfg.config_path);
+  return resolve_data_path(n.Scalar(), cfg.config_path);
 }
 
 // After the calibration, what is left of the bias and scale errors is its uncertainty: that becomes the

@@ -2,8 +2,11 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 #include "common/io/input_error.hpp"
@@ -47,36 +50,60 @@ namespace {
 
 constexpr double kPpm = 1e-6;
 
-Vec3 read_vec3(const YAML::Node& parent, const std::string& key, const std::string& path, bool required,
-               double unit = 1.0) {
-  const YAML::Node n = parent[key];
+// Far outside any real sensor's calibration (ldv calib static's physical ranges are 20 % and 0.2 rad): a
+// value past these is a unit mistake (a fraction written as ppm, degrees as radians) or a broken solve.
+constexpr double kMaxScale = 0.5, kMaxAngleRad = 0.5;
+constexpr double kNoLimit = std::numeric_limits<double>::infinity();
+
+struct Vec3Key {
+  std::string key;
+  bool required = false;
+  double unit = 1.0;          // file value * unit = SI
+  double max_abs = kNoLimit;  // SI
+  bool sigma = false;         // must be >= 0
+};
+
+Vec3 read_vec3(const YAML::Node& parent, const std::string& section, const Vec3Key& k, const std::string& path) {
+  const std::string name = section + "." + k.key;
+  const YAML::Node n = parent[k.key];
   if (!n) {
-    if (required) throw InputError(path, 0, "missing key '" + key + "' (a list of 3 numbers)");
+    if (k.required) throw InputError(path, 0, "missing key '" + name + "' (a list of 3 numbers)");
     return Vec3::Zero();
   }
-  if (!n.IsSequence() || n.size() != 3) throw InputError(path, n.Mark().line + 1, "'" + key + "': expected [x, y, z]");
+  const long line = n.Mark().line + 1;
+  if (!n.IsSequence() || n.size() != 3) throw InputError(path, line, "'" + name + "': expected [x, y, z]");
   Vec3 v;
   for (int i = 0; i < 3; ++i) {
     try {
-      v[i] = n[i].as<double>() * unit;
+      v[i] = n[i].as<double>() * k.unit;
     } catch (const YAML::Exception&) {
-      throw InputError(path, n.Mark().line + 1, "'" + key + "': element " + std::to_string(i) + " is not a number");
+      throw InputError(path, line, "'" + name + "': element " + std::to_string(i + 1) + " is not a number");
     }
-    if (!std::isfinite(v[i])) throw InputError(path, n.Mark().line + 1, "'" + key + "': non-finite value");
+    if (!std::isfinite(v[i])) throw InputError(path, line, "'" + name + "': non-finite value");
+    if (k.sigma && v[i] < 0) throw InputError(path, line, "'" + name + "': a sigma cannot be negative");
+    if (std::abs(v[i]) > k.max_abs) {
+      char msg[160];
+      std::snprintf(msg, sizeof msg, "element %d is %g, beyond any sensor's calibration (limit +-%g): wrong unit?", i + 1,
+                    v[i] / k.unit, k.max_abs / k.unit);
+      throw InputError(path, line, "'" + name + "': " + msg);
+    }
   }
   return v;
 }
 
-TriadCalibration read_triad(const YAML::Node& node, const std::string& bias_key, const std::string& path) {
+TriadCalibration read_triad(const YAML::Node& node, const std::string& section, const std::string& bias_key,
+                            const std::string& path) {
+  if (!node.IsMap()) throw InputError(path, node.Mark().line + 1, "'" + section + "': expected a section of keys");
+  const auto read = [&](const Vec3Key& k) { return read_vec3(node, section, k, path); };
   TriadCalibration t;
-  t.bias = read_vec3(node, bias_key, path, true);
-  t.scale = read_vec3(node, "scale_ppm", path, true, kPpm);
-  t.misalignment_rad = read_vec3(node, "misalignment_rad", path, true);
-  t.frame_rotation_rad = read_vec3(node, "frame_rotation_rad", path, false);
-  t.bias_sigma = read_vec3(node, bias_key + "_sigma", path, false);
-  t.scale_sigma = read_vec3(node, "scale_ppm_sigma", path, false, kPpm);
-  t.misalignment_sigma_rad = read_vec3(node, "misalignment_rad_sigma", path, false);
-  t.frame_rotation_sigma_rad = read_vec3(node, "frame_rotation_rad_sigma", path, false);
+  t.bias = read({bias_key, true});
+  t.scale = read({"scale_ppm", true, kPpm, kMaxScale});
+  t.misalignment_rad = read({"misalignment_rad", true, 1.0, kMaxAngleRad});
+  t.frame_rotation_rad = read({"frame_rotation_rad", false, 1.0, kMaxAngleRad});
+  t.bias_sigma = read({bias_key + "_sigma", false, 1.0, kNoLimit, true});
+  t.scale_sigma = read({"scale_ppm_sigma", false, kPpm, kNoLimit, true});
+  t.misalignment_sigma_rad = read({"misalignment_rad_sigma", false, 1.0, kNoLimit, true});
+  t.frame_rotation_sigma_rad = read({"frame_rotation_rad_sigma", false, 1.0, kNoLimit, true});
   return t;
 }
 
@@ -109,13 +136,17 @@ ImuCalibration load_calibration(const std::string& path) {
   } catch (const YAML::Exception& e) {
     throw InputError(path, e.mark.line + 1, "not valid YAML: " + e.msg);
   }
-  if (!root.IsMap() || !root["format"] || root["format"].as<std::string>() != "ldv_imu_calibration_v1")
-    throw InputError(path, 0, "expected 'format: ldv_imu_calibration_v1'");
+  if (!root.IsMap() || !root["format"] || !root["format"].IsScalar() ||
+      root["format"].as<std::string>() != "ldv_imu_calibration_v1")
+    throw InputError(path, 0, "key 'format': expected 'format: ldv_imu_calibration_v1'");
   if (!root["accel"] || !root["gyro"]) throw InputError(path, 0, "expected sections 'accel' and 'gyro'");
   ImuCalibration cal;
-  cal.accel = read_triad(root["accel"], "bias_mps2", path);
-  cal.gyro = read_triad(root["gyro"], "bias_rad_s", path);
-  if (root["description"]) cal.description = root["description"].as<std::string>();
+  cal.accel = read_triad(root["accel"], "accel", "bias_mps2", path);
+  cal.gyro = read_triad(root["gyro"], "gyro", "bias_rad_s", path);
+  if (const YAML::Node d = root["description"]) {
+    if (!d.IsScalar()) throw InputError(path, d.Mark().line + 1, "'description': expected one line of text");
+    cal.description = d.as<std::string>();
+  }
   return cal;
 }
 
@@ -138,5 +169,6 @@ void save_calibration(const std::string& path, const ImuCalibration& cal) {
   write_triad(out, "gyro", cal.gyro, "bias_rad_s");
   if (!out) throw InputError(path, 0, "write failed");
 }
+
 
 }  // namespace ldv::calib

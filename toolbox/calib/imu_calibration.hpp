@@ -52,7 +52,8 @@ ImuRates apply_calibration(const ImuCalibration& cal, const ImuRates& raw);
 // Increments: the model is linear, so the integral over the sample is corrected with the bias times dt.
 ImuIncrement apply_calibration(const ImuCalibration& cal, const ImuIncrement& raw);
 
-// YAML file (units in the keys; see toolbox/calib/README.md). Throws InputError naming the file and key.
+// YAML file (units in the keys; see toolbox/calib/README.md). Throws InputError naming the file and key, also
+// for values no calibration can hold (|scale| > 50 %, an angle > 0.5 rad, a negative sigma): a unit mistake.
 ImuCalibration load_calibration(const std::string& path);
 void save_calibration(const std::string& path, const ImuCalibration& cal);
 
