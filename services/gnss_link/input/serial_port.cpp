@@ -59,6 +59,8 @@ void SerialPort::maintain(double now_s) {
     ::cfsetispeed(&tio, speed);
     ::cfsetospeed(&tio, speed);
     if (::tcsetattr(fd, TCSANOW, &tio) != 0) error = std::string("tcsetattr: ") + std::strerror(errno);
+    // Bytes the driver buffered before this open (a restarted service) are stale: start from the live stream.
+    else ::tcflush(fd, TCIFLUSH);
   }
   if (!error.empty()) {
     if (fd >= 0) ::close(fd);
