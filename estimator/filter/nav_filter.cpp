@@ -371,7 +371,13 @@ void NavFilter::apply_gnss(const Fix& f) {
 
 void NavFilter::apply_measurement(const Measurement& m) {
   const int kind = static_cast<int>(m.kind);
-  const bool force = c_.consecutive_rejects[kind] >= opt_.gate_max_consecutive_rejects;
+  // Re-synchronise only on a measurement that agrees with the previous rejected one: a stream the state has
+  // left repeats itself (the innovation changes by the drift since), a lone outlier arriving at that moment
+  // does not.
+  const Vec3& previous = c_.last_rejected_y[kind];
+  const bool due = c_.consecutive_rejects[kind] >= opt_.gate_max_consecutive_rejects;
+  const bool agrees = (m.y - previous).norm() <= 0.5 * previous.norm() + 3.0 * std::sqrt(m.R.trace());
+  const bool force = due && agrees;
   InnovationRecord rec;
   rec.t_s = c_.nav.t_s;
   rec.replayed = replaying_;
@@ -406,6 +412,7 @@ void NavFilter::apply_measurement(const Measurement& m) {
     }
   } else {
     ++c_.consecutive_rejects[kind];
+    if (!due) c_.last_rejected_y[kind] = m.y;  // an outlier held back must not become the reference
     ++faults_.gate_rejections;
     if (m.kind != MeasurementKind::kZeroVelocity) c_.status |= kStatusGnssRejected;
   }

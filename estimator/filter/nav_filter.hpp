@@ -82,6 +82,7 @@ class NavFilter {
     double last_gnss_t_s = -1e300;
     double last_health_t_s = -1e300;
     int consecutive_rejects[3] = {0, 0, 0};
+    Vec3 last_rejected_y[3] = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};  // innovation of the last rejection
     std::uint32_t status = 0;
     std::deque<Fix> applied;  // fixes applied within the history horizon (what a snapshot contains)
   };

@@ -90,6 +90,38 @@ TEST(Faults, HugeGnssOutlierIsGatedThenResynchronised) {
   EXPECT_TRUE(f.state().v_n_mps.allFinite());
 }
 
+// The receiver's solution shifts by 5 m for good (the state must follow after the rejections), and at the very
+// epoch the re-synchronisation is due a lone 20 m outlier arrives: it must not be the fix that is forced in.
+TEST(Faults, ResynchronisationWaitsForAFixThatAgreesWithTheRejectedStream) {
+  FilterOptions o;
+  o.zupt.enabled = false;
+  NavFilter f(o);
+  f.initialize(start(), NavStd{});
+  double t = 100.0;
+  GnssFix fix;
+  fix.pos_std_ned_m = Vec3::Constant(0.02);
+  constexpr double kShift_m = 5.0, kOutlier_m = 20.0, kEarthRadius_m = 6.4e6;
+  const int resync_epoch = 5 + o.gate_max_consecutive_rejects;  // the 11th fix after the shift
+  std::vector<InnovationRecord> records;
+  for (int k = 0; k < 25; ++k) {
+    fix.t_s = t + 0.1;
+    fix.pos = start().pos;
+    double north_m = k >= 5 ? kShift_m : 0.0;
+    if (k == resync_epoch) north_m += kOutlier_m;
+    fix.pos.lat_rad += north_m / kEarthRadius_m;
+    f.add_gnss(fix);
+    for (int i = 0; i < 40; ++i) f.add_imu(static_increment(t += 0.005, 0.005));
+    for (const auto& r : f.take_innovations()) records.push_back(r);
+  }
+  ASSERT_EQ(records.size(), 25u);
+  EXPECT_FALSE(records[resync_epoch].accepted) << "the outlier was forced in";
+  EXPECT_TRUE(records[resync_epoch + 1].accepted);  // the next fix agrees with the rejected ones
+  EXPECT_NEAR(records[resync_epoch + 1].innovation.x(), -kShift_m, 0.5);  // predicted - measured
+  EXPECT_EQ(f.faults().gate_resyncs, 1);
+  // The state follows the shifted stream.
+  EXPECT_NEAR((f.state().pos.lat_rad - start().pos.lat_rad) * kEarthRadius_m, kShift_m, 0.1);
+}
+
 TEST(Faults, UnknownModelOrEffectNamesTheProblem) {
   FilterOptions o;
   o.model = "ins16";
