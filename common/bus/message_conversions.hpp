@@ -16,7 +16,8 @@ GnssFix gnss_from_message(const ldv_lcm::gnss_solution_t& m);
 ldv_lcm::gnss_solution_t message_from_gnss(const GnssFix& g, int gps_week, int64_t seq);
 
 // imu_sample_t.status bit 0: the stamp is extrapolated from the host clock (no PPS fit yet), so the
-// sample is not on the GPS time scale: navigation and exports skip it.
+// sample is not on the GPS time scale: navigation and exports skip it. (Bit 2, holdover from a previous or
+// saved fit, is GPS time.)
 constexpr int32_t kImuStatusTimeExtrapolated = 1 << 0;
 inline bool has_gps_time(const ldv_lcm::imu_sample_t& m) { return (m.status & kImuStatusTimeExtrapolated) == 0; }
 

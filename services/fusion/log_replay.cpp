@@ -25,6 +25,7 @@ LogReplaySummary replay_fusion_log(const std::string& log_path, FusionEngine& en
         continue;
       }
       ++sum.imu_messages;
+      if (!has_gps_time(m)) continue;  // as the live service: not on GPS time yet
       engine.on_imu(imu_from_message(m), m.gps_week, arrival_s, outs);
     } else if (ev->channel == gnss_channel) {
       ldv_lcm::gnss_solution_t m;

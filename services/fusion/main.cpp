@@ -106,6 +106,7 @@ int main(int argc, char** argv) {
         ++rt.counters().malformed;
         return;
       }
+      if (!ldv::has_gps_time(m)) return;  // imu_acq not on GPS time yet (cold start, before its PPS fit)
       last_week = m.gps_week;
       engine.on_imu(ldv::imu_from_message(m), m.gps_week, ldv::host_time_s(), outputs);
       publish(outputs);

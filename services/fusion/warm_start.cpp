@@ -1,29 +1,24 @@
 #include "services/fusion/warm_start.hpp"
 
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
+#include <sstream>
 
 #include <yaml-cpp/yaml.h>
+
+#include "common/io/atomic_file.hpp"
 
 namespace ldv {
 
 void save_warm_state(const std::string& path, const WarmState& w) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp);
-    if (!out) return;  // a read-only state directory must not stop navigation
-    out.precision(15);
-    const Vec3 rpy = w.state.rpy_rad();
-    out << "saved_host_time_s: " << w.saved_host_time_s << "\n"
-        << "t_s: " << w.state.t_s << "\n"
-        << "lat_rad: " << w.state.pos.lat_rad << "\nlon_rad: " << w.state.pos.lon_rad << "\nh_m: " << w.state.pos.h_m << "\n"
-        << "v_n_mps: [" << w.state.v_n_mps.x() << ", " << w.state.v_n_mps.y() << ", " << w.state.v_n_mps.z() << "]\n"
-        << "rpy_rad: [" << rpy.x() << ", " << rpy.y() << ", " << rpy.z() << "]\n"
-        << "att_std_rad: [" << w.std.att_rad.x() << ", " << w.std.att_rad.y() << ", " << w.std.att_rad.z() << "]\n";
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
+  std::ostringstream out;
+  out.precision(15);
+  const Vec3 rpy = w.state.rpy_rad();
+  out << "saved_host_time_s: " << w.saved_host_time_s << "\n"
+      << "t_s: " << w.state.t_s << "\n"
+      << "lat_rad: " << w.state.pos.lat_rad << "\nlon_rad: " << w.state.pos.lon_rad << "\nh_m: " << w.state.pos.h_m << "\n"
+      << "v_n_mps: [" << w.state.v_n_mps.x() << ", " << w.state.v_n_mps.y() << ", " << w.state.v_n_mps.z() << "]\n"
+      << "rpy_rad: [" << rpy.x() << ", " << rpy.y() << ", " << rpy.z() << "]\n"
+      << "att_std_rad: [" << w.std.att_rad.x() << ", " << w.std.att_rad.y() << ", " << w.std.att_rad.z() << "]\n";
+  write_file_atomically(path, out.str());  // a read-only state directory must not stop navigation
 }
 
 std::optional<WarmState> load_warm_state(const std::string& path, double now_host_s, double max_age_s) {

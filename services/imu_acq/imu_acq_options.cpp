@@ -79,6 +79,12 @@ ImuAcqOptions load_imu_acq_options(const std::string& path) {
     }
     o.correction.set_calibration(*o.calibration);
   }
+  if (const auto c = y["fit_state_file"]; c && !c.IsNull()) {
+    if (!c.IsScalar()) fail("fit_state_file must be a path (\"\": none)");
+    o.fit_state_file = c.Scalar();
+  }
+  if (y["fit_state_max_age_s"]) o.fit_state_max_age_s = y["fit_state_max_age_s"].as<double>();
+  if (!(o.fit_state_max_age_s > 0)) fail("fit_state_max_age_s must be > 0");
   if (const auto c = y["channels"]) {
     if (c["imu"]) o.imu_channel = c["imu"].as<std::string>();
     if (c["pps"]) o.pps_channel = c["pps"].as<std::string>();

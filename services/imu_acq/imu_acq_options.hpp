@@ -35,6 +35,10 @@ struct ImuAcqOptions {
   // beside the configuration file; stored resolved).
   std::string calibration_file;
   std::optional<calib::ImuCalibration> calibration;
+  // The PPS fit saved across restarts (fit_state.hpp; "": not saved); a saved fit older than the maximum
+  // age is not used (oscillator drift and a cold device make it worthless).
+  std::string fit_state_file;
+  double fit_state_max_age_s = 600.0;
   std::string imu_channel = "IMU", pps_channel = "IMU_PPS", timing_channel = "IMU_TIMING",
               label_channel = "GNSS_PPS";
 };

@@ -34,8 +34,9 @@ constexpr int32_t kFaultNoSamples = 1 << 4;   // no sample for 1 s
 constexpr int32_t kFaultPpsDevice = 1 << 5;   // kernel PPS device unusable
 
 // IMU status bits (imu_sample_t.status).
-constexpr int32_t kStatusExtrapolated = 1 << 0;
+constexpr int32_t kStatusExtrapolated = 1 << 0;  // from the host clock: not on GPS time (common/bus)
 constexpr int32_t kStatusDeviceError = 1 << 1;
+constexpr int32_t kStatusHoldover = 1 << 2;       // from a previous or saved PPS fit, no live PPS behind it
 // IMU_PPS flags (pps_event_t.flags).
 constexpr int32_t kPpsMissingPrevious = 1 << 0, kPpsLate = 1 << 1, kPpsRejected = 1 << 2;
 
@@ -93,6 +94,14 @@ int main(int argc, char** argv) {
       m.flags = pps_flags(e.result);
       rt.bus().publish(o.pps_channel, m);
     });
+    if (!o.fit_state_file.empty()) {
+      if (const auto saved = load_fit_state(o.fit_state_file, host_time_s(), o.fit_state_max_age_s)) {
+        stamper.seed(*saved);
+        spdlog::info("imu_acq: PPS fit saved {:.1f} s ago in {}: stamps stay on GPS time until the fit re-locks",
+                     host_time_s() - saved->saved_host_time_s, o.fit_state_file);
+      }
+    }
+    double next_fit_save_s = now_s + 1.0;
     TimingReport report(1.0 / o.sample_rate_hz, o.hist_bin_s);
     std::optional<GpsTime> previous_stamp;
     uint64_t lost_seen = 0;
@@ -121,7 +130,8 @@ int main(int argc, char** argv) {
         m.dtheta_b_rad[i] = dtheta[i];
         m.dvel_b_mps[i] = dvel[i];
       }
-      m.status = (st.extrapolated ? kStatusExtrapolated : 0) | (d.device_error ? kStatusDeviceError : 0);
+      m.status = (st.extrapolated && !st.holdover ? kStatusExtrapolated : 0) | (st.holdover ? kStatusHoldover : 0) |
+                 (d.device_error ? kStatusDeviceError : 0);
       rt.bus().publish(o.imu_channel, m);
     });
     decoder->on_pps([&](const DevicePpsLatch& p) {
@@ -197,6 +207,10 @@ int main(int argc, char** argv) {
       if (kernel_failed) faults |= kFaultPpsDevice;
       counters.fault_bits = faults;
       rt.set_state(faults ? 2 : 1);
+      if (!o.fit_state_file.empty() && now_s >= next_fit_save_s) {
+        if (const auto fs = stamper.fit_state(now_s)) save_fit_state(o.fit_state_file, *fs);
+        next_fit_save_s = now_s + 2.0;
+      }
       if (now_s >= next_report_s) {
         rt.bus().publish(o.timing_channel, report.message(timing_seq++, now_s, stamper.fit(), 0));
         next_report_s += 1.0;

@@ -116,7 +116,8 @@ TEST(ImuAcqIntegration, GivenTheTimeStampUnitThroughAPtyWith50ppmAndPpsLabels_Th
   const std::string bin = std::string(LDV_BIN_DIR) + "/imu_acq";
   auto svc = std::make_unique<test::ChildProcess>(bin, std::vector<std::string>{"--config", cfg});
   Listener l;
-  ASSERT_TRUE(l.spin_until([&] { return l.status.has_value(); }, 5.0)) << "no heartbeat";
+  // Until the port is open (fault bit 0 clear): bytes buffered before the open are stale and dropped.
+  ASSERT_TRUE(l.spin_until([&] { return l.status.has_value() && (l.status->fault_bits & 1) == 0; }, 5.0)) << "no heartbeat";
 
   // When 12 s of device bytes arrive in real time
   DeviceSim sim(pty);

@@ -50,7 +50,8 @@ TEST(ImuAcqBadFrames, GivenCorruptedFramesAndLineNoise_ThenGoodSamplesPublishedB
     while (std::chrono::steady_clock::now() < end) bus.handle(5);
   };
   const auto t_wait = std::chrono::steady_clock::now() + std::chrono::seconds(5);
-  while (!status && std::chrono::steady_clock::now() < t_wait) bus.handle(10);
+  // Until the port is open (fault bit 0 clear): bytes buffered before the open are stale and dropped.
+  while (!(status && (status->fault_bits & 1) == 0) && std::chrono::steady_clock::now() < t_wait) bus.handle(10);
   ASSERT_TRUE(status) << "no heartbeat";
 
   // When 6 s of frames arrive, every 40th with a flipped payload bit, every 97th with a flipped CRC

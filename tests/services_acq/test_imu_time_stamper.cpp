@@ -82,3 +82,65 @@ TEST(ImuTimeStamper, GivenA50ppmOscillatorAndLastPulseLabels_ThenSubMicrosecondS
   ASSERT_FALSE(edges.empty());
   EXPECT_TRUE(edges.back().gps_second.has_value());
 }
+
+// A restart of imu_acq: the fit saved while locked (fit_state.hpp) is loaded by a new stamper 500 s later (the
+// 32-bit counter has wrapped in between). Until new PPS edges arrive its stamps stay on GPS time (holdover,
+// microseconds), not on the host clock; and when the device restarted its counter too, the saved fit is not
+// used (host-clock stamps, flagged).
+TEST(ImuTimeStamper, GivenAFitSavedBeforeARestart_ThenStampsStayOnGpsTimeUntilTheFitRelocks) {
+  test::SimOscillator osc;
+  const GpsTime t0{2320, 116400.0};
+  const double unix_minus_gps_s = kGpsEpochInUnixSeconds - 18.0;
+  auto host_at = [&](double t_s) { return t0.total_seconds() + t_s + unix_minus_gps_s + 3e-3; };
+  StamperOptions o;
+  o.fit.nominal_counter_hz = osc.nominal_hz;
+  auto label_at = [&](double whole_s) {
+    gnss::PpsTimeLabel label;
+    label.pulse_time = GpsTime::from_total_seconds(t0.total_seconds() + whole_s);
+    label.refers = gnss::PpsTimeLabel::Refers::kLastPulse;
+    return label;
+  };
+
+  ImuTimeStamper before(o, nullptr);
+  for (int k = 1; k <= 20 * 100; ++k) {
+    const double t_s = k / 100.0;
+    if (k % 100 == 0) {
+      before.on_pps_latch(osc.latch(t_s), host_at(t_s));
+      before.on_label(label_at(t_s), host_at(t_s + 0.25));
+    }
+    before.poll(host_at(t_s));
+    before.stamp(osc.latch(t_s), host_at(t_s));
+  }
+  ASSERT_TRUE(before.fit().locked());
+  const auto state = before.fit_state(host_at(20.0));
+  ASSERT_TRUE(state.has_value());
+  const std::string path = ::testing::TempDir() + "/pps_fit_state.yaml";
+  save_fit_state(path, *state);
+  const double restart_s = 520.0;  // counter phase + 5.2e9 counts: past the 2^32 wrap
+  const auto loaded = load_fit_state(path, host_at(restart_s), 600.0);
+  ASSERT_TRUE(loaded.has_value());
+  EXPECT_FALSE(load_fit_state(path, host_at(restart_s), 300.0).has_value()) << "older than the maximum age";
+
+  ImuTimeStamper after(o, nullptr);
+  after.seed(*loaded);
+  double max_err_s = 0.0;
+  for (int k = 0; k < 100; ++k) {  // one second of samples, no PPS yet
+    const double t_s = restart_s + k / 100.0;
+    const Stamp s = after.stamp(osc.latch(t_s), host_at(t_s));
+    EXPECT_TRUE(s.extrapolated && s.holdover);
+    max_err_s = std::max(max_err_s, std::abs(s.time.total_seconds() - t0.total_seconds() - t_s));
+  }
+  std::printf("[ stamper ] after a 500 s restart gap, holdover stamps from the saved fit: max error %.2f us\n",
+              max_err_s * 1e6);
+  EXPECT_LT(max_err_s, 10e-6);
+
+  // The device was power-cycled as well: its counter starts elsewhere, the saved fit does not apply.
+  test::SimOscillator cold = osc;
+  cold.phase_counts = 1000.0;
+  ImuTimeStamper fresh(o, nullptr);
+  fresh.seed(*loaded);
+  const Stamp s = fresh.stamp(cold.latch(restart_s), host_at(restart_s));
+  EXPECT_TRUE(s.extrapolated);
+  EXPECT_FALSE(s.holdover);
+  EXPECT_NEAR(s.time.total_seconds() - t0.total_seconds(), restart_s, 0.05);  // the host clock
+}
