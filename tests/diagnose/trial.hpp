@@ -43,7 +43,7 @@ inline Outcome run_trial(const Trial& t, bool with_reference = false) {
   Outcome o;
   o.cpu_s = d.cpu_s;
   const std::string name = t.effect.empty() ? "" : effect_name(t.effect);
-  const auto& ranked = d.steps.front().screening.ranked;
+  const auto& ranked = d.ranking;  // after confirmation, as the JSON's candidates
   if (!ranked.empty() && ranked.front().testable) {
     o.first = ranked.front().name;
     o.ranked_first = o.first == name;

@@ -8,6 +8,24 @@
 namespace ldv::diag {
 namespace {
 
+std::vector<CandidateScore> final_ranking(const DiagnosisStep& first) {
+  std::vector<const Confirmation*> confirmed;
+  for (const Confirmation& c : first.confirmations) confirmed.push_back(&c);
+  std::stable_sort(confirmed.begin(), confirmed.end(), [](const Confirmation* a, const Confirmation* b) {
+    if (a->accepted != b->accepted) return a->accepted;
+    return a->adjusted_gain - a->penalty > b->adjusted_gain - b->penalty;
+  });
+  std::vector<CandidateScore> out;
+  for (const Confirmation* c : confirmed)
+    for (const CandidateScore& cs : first.screening.ranked)
+      if (cs.name == c->effect) out.push_back(cs);
+  for (const CandidateScore& cs : first.screening.ranked)
+    if (std::none_of(confirmed.begin(), confirmed.end(), [&](const Confirmation* c) { return c->effect == cs.name; }))
+      out.push_back(cs);
+  return out;
+}
+
+
 double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
 std::vector<Segment> record_segments(const FilterRun& run, const std::vector<Segment>& labels) {
@@ -94,6 +112,7 @@ Diagnosis diagnose(const DiagnoseInputs& in, const DiagnoseOptions& opt) {
     d.steps.push_back(std::move(st));
     if (!best) break;
   }
+  d.ranking = final_ranking(d.steps.front());
   d.final_options = current;
   if (d.add.empty()) {
     d.after = d.before;

@@ -37,6 +37,10 @@ struct Diagnosis {
   std::string model;                 // name of the model under test
   std::vector<std::string> model_effects;
   std::vector<DiagnosisStep> steps;  // steps[0] is the model under test
+  // The model's missing effects, best first: those the first step confirmed (reran) by penalised likelihood
+  // gain, accepted before rejected; then the rest by screening statistic. The score test ranks by a linear
+  // look at the innovations; a rerun with the effect added is the better judge where two candidates are close.
+  std::vector<CandidateScore> ranking;
   std::vector<std::string> add;      // the verdict
   std::vector<EffectEstimate> added_estimates;  // their estimates in the final rerun
   est::FilterOptions final_options;

@@ -91,7 +91,7 @@ std::string diagnosis_json(const Diagnosis& d) {
   const ScreeningResult& first = d.steps.front().screening;
   o << "{\n  \"model\": " << str(d.model) << ",\n  \"model_effects\": " << names(d.model_effects)
     << ",\n  \"consistent\": " << (d.consistent() ? "true" : "false") << ",\n  \"candidates\": [\n    ";
-  for (size_t i = 0; i < first.ranked.size(); ++i) o << (i ? ",\n    " : "") << candidate_json(first.ranked[i]);
+  for (size_t i = 0; i < d.ranking.size(); ++i) o << (i ? ",\n    " : "") << candidate_json(d.ranking[i]);
   o << "\n  ],\n  \"verdict\": {\"add\": " << names(d.add) << ", \"estimates\": "
     << list(d.added_estimates.size(), [&](size_t i) {
          const EffectEstimate& e = d.added_estimates[i];

@@ -94,6 +94,11 @@ void print_report(std::ostream& out, const Diagnosis& d) {
       out << "  confirm " << c.effect << ": log-likelihood gain " << fmt("%.1f", c.loglik_gain) << ", /long-run factor "
           << fmt("%.1f", c.adjusted_gain) << " vs BIC penalty " << fmt("%.1f", c.penalty) << " -> "
           << (c.accepted ? "accepted" : "rejected") << "\n";
+    if (k == 0 && st.confirmations.size() > 1) {
+      out << "  ranking after the reruns:";
+      for (size_t i = 0; i < d.ranking.size() && i < st.confirmations.size(); ++i) out << " " << i + 1 << ". " << d.ranking[i].name;
+      out << "\n";
+    }
   }
   out << "\n3. Verdict: ";
   if (d.add.empty()) {
