@@ -50,13 +50,13 @@ struct KfGinsConfig {
   YAML::Node ldv;  // the optional `ldv:` extension section, as written
 };
 
-// Throws InputError naming the file and key on a missing required key or a value of the wrong type.
-// Relative data paths are resolved against the working directory first (as KF-GINS does), then
-// against the configuration file's directory.
 // A path named in a configuration file: as given when absolute or present from the working directory, else
 // beside the configuration file when there, else as given (so an error names it as the user wrote it).
 std::string resolve_data_path(const std::string& path, const std::string& config_path);
 
+// Throws InputError naming the file and key on a missing required key or a value of the wrong type.
+// Relative data paths are resolved against the working directory first (as KF-GINS does), then
+// against the configuration file's directory.
 KfGinsConfig load_kfgins_config(const std::string& path);
 void save_kfgins_config(const KfGinsConfig& cfg, const std::string& path);
 

@@ -3,7 +3,8 @@
 // ../shared/data/drives/walk_0827: `ax,ay,az,gx,gy,gz,t_counter_ms`). Each sample carries the
 // device's own millisecond counter; the tag file gives the host reception time of every byte.
 // GPS time of a sample = offset + rate * counter, fitted to the lower envelope of the reception
-// times (a sample can arrive late, never early), so host jitter does not enter the time stamps.
+// times (a sample can arrive late, never early), so host jitter does not enter the time stamps; when that
+// fitted rate is implausible for a counter (see TaggedImuCsvOptions), the counter's nominal rate is kept.
 // Rates are turned into increments over (t_prev, t] with the trapezoidal rule.
 #include <string>
 #include <vector>
@@ -32,7 +33,7 @@ struct TaggedImuCsvReport {
   double host_rate_error_ppm = 0.0;  // device counter rate fitted to the host reception times, minus 1
   double counter_rate = 1.0;         // the rate used
   std::string rate_source;
-  double min_latency_s = 0.0;   // by construction 0: the fit's lower envelope
+  double min_latency_s = 0.0;   // 0 with the lower-envelope fit; negative when the host tags are distorted
   double median_latency_s = 0.0;
   double p99_latency_s = 0.0;
 };

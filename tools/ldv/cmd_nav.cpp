@@ -17,13 +17,11 @@
 
 #include "common/formats/kfgins_config.hpp"
 #include "common/formats/kfgins_files.hpp"
-#include "common/formats/tagged_imu_csv.hpp"
 #include "common/io/input_error.hpp"
 #include "common/io/text_table.hpp"
 #include "estimator/run/alignment_options_from.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "services/fusion/log_replay.hpp"
-#include "services/gnss_link/protocols/rtklib_solution.hpp"
 #include "toolbox/assess/nav_inputs.hpp"
 #include "tools/ldv/command_registry.hpp"
 
@@ -152,9 +150,6 @@ class NavOutputs {
   double next_std_t_ = -1e300;
 };
 
-// RTKLIB .pos -> fixes (+ the GPS week of the first solution). Height offset: .pos files written with
-// the receiver's geoid model give height above mean sea level; add the geoid separation N to get the
-// ellipsoidal height the filter uses (h = H_msl + N).
 int week_from_config(const KfGinsConfig& cfg) {
   if (!cfg.ldv.IsDefined() || cfg.ldv.IsNull() || !cfg.ldv["week"]) return -1;
   try {
