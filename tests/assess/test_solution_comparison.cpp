@@ -73,7 +73,8 @@ TEST(SolutionComparison, NavFileRoundTripAndNoSharedEpochs) {
   const std::string path = (std::filesystem::temp_directory_path() / "ldv_compare_test.nav").string();
   {
     NavWriter w(path);
-    for (const NavSample& s : moving(1000.0, 0.1, 100).samples()) {
+    const auto track = moving(1000.0, 0.1, 100);  // named: samples() refers into it
+    for (const NavSample& s : track.samples()) {
       NavRecord r;
       r.week = 2300;
       r.sow_s = s.t_s;

@@ -77,8 +77,12 @@ TEST(DiagnoseMonteCarlo, DetectionFalseAlarmsAndErrorReduction) {
                 100.0 * group / n, 100.0 * verdict / n, 100.0 * any / n,
                 measure_error ? (std::to_string(reductions * 100 / n) + "%>=.8").c_str() : "-", cpu / n);
     std::fflush(stdout);
-    if (c.size == "none") EXPECT_LE(any, 0.05 * n) << c.grade << ": false verdicts";
-    if (c.size == "large") EXPECT_GE(group, 0.95 * n) << c.grade << " " << c.effect << ": ranked first (or its group)";
+    if (c.size == "none") {
+      EXPECT_LE(any, 0.05 * n) << c.grade << ": false verdicts";
+    }
+    if (c.size == "large") {
+      EXPECT_GE(group, 0.95 * n) << c.grade << " " << c.effect << ": ranked first (or its group)";
+    }
     if (measure_error) {
       EXPECT_GE(reductions, 0.95 * n) << c.grade << " " << c.effect << ": excess error removed";
     }
