@@ -9,7 +9,7 @@ namespace ldv {
 
 LogReplaySummary replay_fusion_log(const std::string& log_path, FusionEngine& engine,
                                    const std::function<void(const FusionOutput&)>& on_output,
-                                   const std::string& imu_channel, const std::string& gnss_channel) {
+                                   const std::string& imu_channel, const std::string& gnss_channel, bool host_clock_imu) {
   lcm::LogFile log(log_path, "r");
   if (!log.good()) throw InputError(log_path, 0, "cannot open LCM log file");
   LogReplaySummary sum;
@@ -25,7 +25,7 @@ LogReplaySummary replay_fusion_log(const std::string& log_path, FusionEngine& en
         continue;
       }
       ++sum.imu_messages;
-      if (!has_gps_time(m)) continue;  // as the live service: not on GPS time yet
+      if (!host_clock_imu && !has_gps_time(m)) continue;  // as the live service: not on GPS time yet
       engine.on_imu(imu_from_message(m), m.gps_week, arrival_s, outs);
     } else if (ev->channel == gnss_channel) {
       ldv_lcm::gnss_solution_t m;

@@ -13,10 +13,11 @@ struct LogReplaySummary {
   std::string initialisation;
 };
 
-// Calls on_output for every navigation output. Throws InputError if the log cannot be read.
+// Calls on_output for every navigation output. Throws InputError if the log cannot be read. IMU samples
+// stamped from the host clock (status bit 0) are skipped unless host_clock_imu, as the live service does.
 LogReplaySummary replay_fusion_log(const std::string& log_path, FusionEngine& engine,
                                    const std::function<void(const FusionOutput&)>& on_output,
                                    const std::string& imu_channel = "IMU",
-                                   const std::string& gnss_channel = "GNSS_SOLUTION");
+                                   const std::string& gnss_channel = "GNSS_SOLUTION", bool host_clock_imu = false);
 
 }  // namespace ldv

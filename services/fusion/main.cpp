@@ -27,6 +27,9 @@ struct FusionConfig {
   double history_s = 3.0;     // how late a GNSS solution may arrive and still be applied at its epoch
   std::string state_file;     // warm-start state ("" = none)
   double warm_start_max_age_s = 30.0;
+  // IMU samples stamped from the host clock (imu_acq status bit 0) are skipped: they are not on GPS time.
+  // An IMU without PPS (imu_acq pps.source: none) has only those: then set this.
+  bool host_clock_imu = false;
 };
 
 FusionConfig load_config(const std::string& path) {
@@ -39,6 +42,7 @@ FusionConfig load_config(const std::string& path) {
   if (y["history_s"]) c.history_s = y["history_s"].as<double>();
   if (y["state_file"]) c.state_file = y["state_file"].as<std::string>();
   if (y["warm_start_max_age_s"]) c.warm_start_max_age_s = y["warm_start_max_age_s"].as<double>();
+  if (y["host_clock_imu"]) c.host_clock_imu = y["host_clock_imu"].as<bool>();
   return c;
 }
 }  // namespace
@@ -106,7 +110,7 @@ int main(int argc, char** argv) {
         ++rt.counters().malformed;
         return;
       }
-      if (!ldv::has_gps_time(m)) return;  // imu_acq not on GPS time yet (cold start, before its PPS fit)
+      if (!cfg.host_clock_imu && !ldv::has_gps_time(m)) return;  // imu_acq not on GPS time yet (before its PPS fit)
       last_week = m.gps_week;
       engine.on_imu(ldv::imu_from_message(m), m.gps_week, ldv::host_time_s(), outputs);
       publish(outputs);

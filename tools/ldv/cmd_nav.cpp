@@ -42,7 +42,7 @@ struct NavArgs {
   int align_hypotheses = 0;       // 0: the config's ldv.align_hypotheses
   double history_s = 3.0;
   double align_wait_s = 1.0;
-  bool quiet = false, print_options = false;
+  bool quiet = false, print_options = false, host_clock_imu = false;
 };
 
 // Writes columns with fixed decimals fast (the std and innovation files), in 256 KiB blocks.
@@ -214,7 +214,7 @@ void run_lcm_log(const NavArgs& a, const KfGinsConfig& cfg, est::FilterOptions o
     out->epoch(f, a.week >= 0 ? a.week : o.gps_week);
     t1 = o.state.t_s;
     ++n;
-  });
+  }, "IMU", "GNSS_SOLUTION", a.host_clock_imu);
   if (!out) throw InputError(a.lcm_log, 0, "no navigation output: the log never allowed an alignment (" +
                                                std::to_string(sum.imu_messages) + " IMU and " +
                                                std::to_string(sum.gnss_messages) + " GNSS messages)");
@@ -335,6 +335,9 @@ void add_nav_command(CLI::App& app) {
                 "minimum position std [m] of .pos solutions that are not RTK-fixed (0: as reported)");
   c->add_option("--lcm-log", args->lcm_log, "replay an LCM log (IMU + GNSS_SOLUTION) through the fusion service's engine");
   c->add_option("--history", args->history_s, "with --lcm-log: how late a GNSS fix may arrive [s] (as the live service)");
+  c->add_flag("--host-clock-imu", args->host_clock_imu,
+              "with --lcm-log: also use IMU samples stamped from the host clock (status bit 0), as fusion's "
+              "host_clock_imu does for an IMU without PPS");
   c->add_option("--align-wait", args->align_wait_s, "with --lcm-log: host seconds the alignment waits for GNSS");
   c->add_option("--model", args->model, "ins15 | kfgins21 | geoldv51 (default kfgins21 or ldv.model)");
   c->add_option("--add", args->add, "add an effect block (repeatable)");
