@@ -220,9 +220,12 @@ SimResult simulate(const SimRequest& req, const std::function<void(double)>& pro
   // KF-GINS configuration: initial state from the truth, noise from the grade, declared effects only.
   KfGinsConfig& c = res.kfgins;
   c.imu_rate_hz = req.imu_rate_hz;
-  c.start_time_s = req.start_sow_s;
+  // As KF-GINS reads it: the initial state holds at the first IMU record at or after starttime, whose own
+  // increment is not integrated. So starttime is the first record's epoch and the state is the truth there
+  // (KF-GINS refuses a starttime before its first record).
+  c.start_time_s = res.imu.empty() ? req.start_sow_s : res.imu.front().t_s;
   c.end_time_s = -1.0;
-  const TruthSample& t0 = res.truth.front();
+  const TruthSample& t0 = res.truth.size() > 1 ? res.truth[1] : res.truth.front();
   c.init_pos = t0.pos;
   c.init_vel_n_mps = t0.vel_n_mps;
   c.init_rpy_rad = t0.rpy_rad;
