@@ -89,16 +89,13 @@ std::vector<ImuIncrement> read_tagged_imu_csv(const std::string& csv_path, const
   fit_lower_envelope(raw, offset, rate);
   rep.host_rate_error_ppm = (rate - 1.0) * 1e6;
   rep.rate_source = "host reception times (lower envelope)";
-  if (opt.counter_rate > 0.0) {
-    rate = opt.counter_rate;
-    rep.rate_source = "given";
-  } else if (std::abs(rate - 1.0) * 1e6 > opt.max_host_rate_error_ppm) {
-    // A counter off by more than a crystal can be means the reception times are distorted (buffered or
-    // burst delivery), not the counter: keep the counter's nominal rate.
-    rate = 1.0;
-    rep.rate_source = "device counter (host reception rate implausible)";
-  }
-  if (rep.rate_source != "host reception times (lower envelope)") {
+  const bool given = opt.counter_rate > 0.0;
+  // A counter off by more than a crystal can be means the reception times are distorted (buffered or burst
+  // delivery), not the counter: keep the counter's nominal rate.
+  const bool implausible = !given && std::abs(rep.host_rate_error_ppm) > opt.max_host_rate_error_ppm;
+  if (given || implausible) {
+    rate = given ? opt.counter_rate : 1.0;
+    rep.rate_source = given ? "given" : "device counter (host reception rate implausible)";
     // Offset from the earliest samples: the log's start is the one moment the reception is known to be prompt.
     offset = raw.front().reception_gps_s - rate * raw.front().counter_s;
     for (const auto& x : raw) {

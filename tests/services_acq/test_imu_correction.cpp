@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <vector>
 
 #include "services/imu_acq/imu_acq_options.hpp"
 
@@ -16,6 +17,17 @@ namespace {
 namespace fs = std::filesystem;
 
 // A directory of its own for a configuration and its calibration (the test's working directory is elsewhere).
+// Loading `config` fails with a message that contains every one of `names`.
+void expect_start_up_error(const std::string& config, const std::vector<std::string>& names) {
+  try {
+    load_imu_acq_options(config);
+    FAIL() << "expected an error";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    for (const std::string& n : names) EXPECT_NE(what.find(n), std::string::npos) << n << " in: " << what;
+  }
+}
+
 fs::path fresh_dir(const std::string& name) {
   const fs::path d = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
   fs::remove_all(d);
@@ -86,15 +98,7 @@ TEST(ImuCorrection, GivenABadOrMissingCalibrationFile_ThenStartUpFailsNamingBoth
   const fs::path dir = fresh_dir("imu_acq_bad_cal");
   const std::string config = (dir / "imu_acq.yaml").string();
   std::ofstream(config) << "calibration_file: missing_cal.yaml\n";
-  try {
-    load_imu_acq_options(config);
-    FAIL() << "expected an error";
-  } catch (const std::runtime_error& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find("imu_acq.yaml"), std::string::npos) << what;
-    EXPECT_NE(what.find("calibration_file"), std::string::npos) << what;
-    EXPECT_NE(what.find("missing_cal.yaml"), std::string::npos) << what;
-  }
+  expect_start_up_error(config, {"imu_acq.yaml", "calibration_file", "missing_cal.yaml"});
   // A scale factor error of 800 %: no sensor has that, a unit mistake; refused with the line and the key.
   std::ofstream(dir / "bad_cal.yaml") << "format: ldv_imu_calibration_v1\n"
                                           "accel:\n  bias_mps2: [0, 0, 0]\n  scale_ppm: [0, 0, 0]\n"
@@ -102,15 +106,7 @@ TEST(ImuCorrection, GivenABadOrMissingCalibrationFile_ThenStartUpFailsNamingBoth
                                           "gyro:\n  bias_rad_s: [0, 0, 0]\n  scale_ppm: [0, 8000000, 0]\n"
                                           "  misalignment_rad: [0, 0, 0]\n";
   std::ofstream(config) << "calibration_file: bad_cal.yaml\n";
-  try {
-    load_imu_acq_options(config);
-    FAIL() << "expected an error";
-  } catch (const std::runtime_error& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find("imu_acq.yaml"), std::string::npos) << what;
-    EXPECT_NE(what.find("bad_cal.yaml:8"), std::string::npos) << what;
-    EXPECT_NE(what.find("gyro.scale_ppm"), std::string::npos) << what;
-  }
+  expect_start_up_error(config, {"imu_acq.yaml", "bad_cal.yaml:8", "gyro.scale_ppm"});
   fs::remove_all(dir);
 }
 

@@ -65,12 +65,23 @@ std::string take_priors_from(const calib::ImuCalibration& cal, const KfGinsConfi
 
 }  // namespace
 
-NavInputs load_nav_inputs(const NavInputArgs& a) {
+NavInputs load_nav_model(const NavInputArgs& a) {
   NavInputs in;
   if (!a.config.empty()) {
     in.config = load_kfgins_config(a.config);
     in.options = est::options_from_kfgins(in.config);
+  } else {
+    in.config.output_path = ".";
   }
+  if (a.lever.size() == 3) in.options.lever_arm.init = Vec3(a.lever[0], a.lever[1], a.lever[2]);
+  if (!a.model.empty()) in.options.model = a.model;
+  in.options.add.insert(in.options.add.end(), a.add.begin(), a.add.end());
+  in.options.drop.insert(in.options.drop.end(), a.drop.begin(), a.drop.end());
+  return in;
+}
+
+NavInputs load_nav_inputs(const NavInputArgs& a) {
+  NavInputs in = load_nav_model(a);
   const auto setting = [&](double given, const char* key) {
     return given != NavInputArgs::kUnset ? given : (a.config.empty() ? 0.0 : est::ldv_number(in.config, key, 0.0));
   };
@@ -81,10 +92,6 @@ NavInputs load_nav_inputs(const NavInputArgs& a) {
   if (!a.imu_csv.empty()) in.config.imu_path = a.imu_csv;
   if (!a.gnss.empty()) in.config.gnss_path = a.gnss;
   if (!a.rtklib_pos.empty()) in.config.gnss_path = a.rtklib_pos;
-  if (a.lever.size() == 3) in.options.lever_arm.init = Vec3(a.lever[0], a.lever[1], a.lever[2]);
-  if (!a.model.empty()) in.options.model = a.model;
-  in.options.add.insert(in.options.add.end(), a.add.begin(), a.add.end());
-  in.options.drop.insert(in.options.drop.end(), a.drop.begin(), a.drop.end());
 
   const std::string& imu_path = in.config.imu_path;
   if (imu_path.empty()) throw InputError("ldv", 0, "give --kfgins-config FILE, or --imu FILE (or --imu-csv FILE)");

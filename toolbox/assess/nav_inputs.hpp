@@ -53,7 +53,10 @@ struct NavInputs {
   int gps_week = -1;        // from a .pos file, else -1
 };
 
-// Throws InputError naming what is missing or wrong.
+// The configuration and the filter options with the command line's model changes, no data read (the
+// config's output path defaults to "." without a config). Throws InputError naming what is wrong.
+NavInputs load_nav_model(const NavInputArgs& args);
+// That, plus the IMU and GNSS data. Throws InputError naming what is missing or wrong.
 NavInputs load_nav_inputs(const NavInputArgs& args);
 
 }  // namespace ldv::assess

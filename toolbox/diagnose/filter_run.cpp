@@ -31,16 +31,7 @@ FilterRun run_filter(const DiagnoseInputs& in, const est::FilterOptions& options
                           (f.status() & est::kStatusGnssOutage) != 0});
   };
   if (!observer)
-    cb.on_innovation = [&](const est::InnovationRecord& r) {
-      SensitivityRecord rec;
-      rec.t_s = r.t_s;
-      rec.kind = r.kind;
-      rec.innovation = r.innovation;
-      rec.S = r.S;
-      rec.nis = r.nis;
-      rec.accepted = r.accepted;
-      run.records.push_back(std::move(rec));
-    };
+    cb.on_innovation = [&](const est::InnovationRecord& r) { run.records.push_back(SensitivityRecord::from(r)); };
   run.summary = est::run_navigation(in.imu, in.gnss, in.cfg, filter, cb);
   if (observer) run.records = observer->records();
 

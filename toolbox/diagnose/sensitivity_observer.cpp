@@ -10,6 +10,17 @@ using est::kAtt;
 using est::kVel;
 using est::Mat3X;
 
+SensitivityRecord SensitivityRecord::from(const est::InnovationRecord& r) {
+  SensitivityRecord rec;
+  rec.t_s = r.t_s;
+  rec.kind = r.kind;
+  rec.innovation = r.innovation;
+  rec.S = r.S;
+  rec.nis = r.nis;
+  rec.accepted = r.accepted;
+  return rec;
+}
+
 SensitivityObserver::SensitivityObserver(const est::NavFilter& filter, const CandidateSet& candidates)
     : filter_(filter), set_(candidates) {
   Psi_ = Eigen::MatrixXd::Zero(filter.layout().size(), set_.columns);
@@ -72,13 +83,7 @@ void SensitivityObserver::on_update(const est::InnovationRecord& r, const Eigen:
   lp.omega_in_n_rad_s = earth::omega_ie_n(s.pos.lat_rad) + earth::omega_en_n(s.pos.lat_rad, s.pos.h_m, s.v_n_mps);
   lp.v_ant_n_mps = est::antenna_velocity_n(s, lp);
 
-  SensitivityRecord rec;
-  rec.t_s = r.t_s;
-  rec.kind = r.kind;
-  rec.innovation = r.innovation;
-  rec.S = r.S;
-  rec.nis = r.nis;
-  rec.accepted = r.accepted;
+  SensitivityRecord rec = SensitivityRecord::from(r);
   rec.s = H * Psi_;  // 3 x P
   const bool velocity = r.kind == est::MeasurementKind::kGnssVelocity;
   const Mat3 dv_dw = -lp.C_b_n * skew(lp.lever_arm_b_m);  // a gyro error moves the antenna

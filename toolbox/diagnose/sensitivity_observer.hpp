@@ -24,6 +24,9 @@ struct SensitivityRecord {
   double nis = 0.0;
   bool accepted = true;
   Eigen::Matrix<double, 3, Eigen::Dynamic> s;  // d(innovation)/d(e), 3 x P
+
+  // The filter's record of a measurement, without sensitivities.
+  static SensitivityRecord from(const est::InnovationRecord& r);
 };
 
 class SensitivityObserver final : public est::FilterObserver {

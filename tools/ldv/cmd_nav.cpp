@@ -24,20 +24,17 @@
 #include "services/fusion/log_replay.hpp"
 #include "toolbox/assess/nav_inputs.hpp"
 #include "tools/ldv/command_registry.hpp"
+#include "tools/ldv/nav_input_options.hpp"
 
 namespace {
 namespace fs = std::filesystem;
 using namespace ldv;
 
 struct NavArgs {
-  std::string config, imu, gnss, pos, lcm_log, imu_csv, imu_tag, out, model, calibration;
-  std::vector<std::string> add, drop;
-  std::vector<double> lever;
+  assess::NavInputArgs in;  // the file inputs, shared with ldv outage / diagnose (nav_input_options.hpp)
+  std::string lcm_log, out;
   int week = -1;
   double std_rate_hz = 10.0;
-  double pos_height_offset_m = assess::NavInputArgs::kUnset;  // unset: the config's ldv: value
-  double float_std_min_m = assess::NavInputArgs::kUnset;
-  double imu_time_shift_s = assess::NavInputArgs::kUnset;
   double align_speed_mps = -1.0;  // <= 0: the config's ldv.align_speed_mps
   int align_hypotheses = 0;       // 0: the config's ldv.align_hypotheses
   double history_s = 3.0;
@@ -192,7 +189,7 @@ std::unique_ptr<est::NavFilter> check_model(const NavArgs& a, const est::FilterO
   try {
     return std::make_unique<est::NavFilter>(opt);
   } catch (const std::invalid_argument& e) {
-    throw InputError(a.config.empty() ? "ldv nav" : a.config, 0, e.what());
+    throw InputError(a.in.config.empty() ? "ldv nav" : a.in.config, 0, e.what());
   }
 }
 
@@ -229,59 +226,32 @@ void run_lcm_log(const NavArgs& a, const KfGinsConfig& cfg, est::FilterOptions o
 }
 
 void run_nav(const NavArgs& a) {
-  const bool imu_given = !a.imu.empty() || !a.imu_csv.empty();
-  const bool gnss_given = !a.gnss.empty() || !a.pos.empty();
-  if (!a.imu.empty() && !a.imu_csv.empty()) throw InputError("ldv nav", 0, "give one of --imu and --imu-csv");
-  if (!a.gnss.empty() && !a.pos.empty()) throw InputError("ldv nav", 0, "give one of --gnss and --pos");
+  const bool imu_given = !a.in.imu.empty() || !a.in.imu_csv.empty();
+  const bool gnss_given = !a.in.gnss.empty() || !a.in.rtklib_pos.empty();
+  if (!a.in.imu.empty() && !a.in.imu_csv.empty()) throw InputError("ldv nav", 0, "give one of --imu and --imu-csv");
+  if (!a.in.gnss.empty() && !a.in.rtklib_pos.empty()) throw InputError("ldv nav", 0, "give one of --gnss and --pos");
   if (!a.lcm_log.empty() && (imu_given || gnss_given))
     throw InputError("ldv nav", 0, "--lcm-log holds both IMU and GNSS: do not combine it with --imu/--gnss/--pos");
-  if (!a.imu_tag.empty() && a.imu_csv.empty()) throw InputError("ldv nav", 0, "--imu-tag goes with --imu-csv");
-  if (!a.calibration.empty() && !a.lcm_log.empty())
+  if (!a.in.imu_tag.empty() && a.in.imu_csv.empty()) throw InputError("ldv nav", 0, "--imu-tag goes with --imu-csv");
+  if (!a.in.calibration.empty() && !a.lcm_log.empty())
     throw InputError("ldv nav", 0, "--calibration goes with IMU files: a log's IMU messages are imu_acq's, already calibrated "
                                    "by its calibration_file");
-  if (a.config.empty() && a.lcm_log.empty() && (!imu_given || !gnss_given))
+  if (a.in.config.empty() && a.lcm_log.empty() && (!imu_given || !gnss_given))
     throw InputError("ldv nav", 0,
                      "give --kfgins-config FILE, or an IMU input (--imu FILE or --imu-csv FILE) and a GNSS input "
                      "(--gnss FILE or --pos FILE), or --lcm-log FILE");
 
   if (!a.lcm_log.empty()) {
-    KfGinsConfig cfg;
-    est::FilterOptions opt;
-    if (!a.config.empty()) {
-      cfg = load_kfgins_config(a.config);
-      opt = est::options_from_kfgins(cfg);
-    } else {
-      cfg.output_path = ".";
-    }
-    if (a.lever.size() == 3) opt.lever_arm.init = Vec3(a.lever[0], a.lever[1], a.lever[2]);
-    if (!a.model.empty()) opt.model = a.model;
-    opt.add.insert(opt.add.end(), a.add.begin(), a.add.end());
-    opt.drop.insert(opt.drop.end(), a.drop.begin(), a.drop.end());
-    apply_alignment_args(a, opt);
-    check_model(a, opt);
-    if (!a.quiet && a.print_options) opt.print(std::cerr);
-    run_lcm_log(a, cfg, opt, est::alignment_options_from(opt));
+    assess::NavInputs model = assess::load_nav_model(a.in);
+    apply_alignment_args(a, model.options);
+    check_model(a, model.options);
+    if (!a.quiet && a.print_options) model.options.print(std::cerr);
+    run_lcm_log(a, model.config, model.options, est::alignment_options_from(model.options));
     return;
   }
 
   const auto t_begin = std::chrono::steady_clock::now();
-  assess::NavInputArgs ia;
-  ia.config = a.config;
-  ia.imu = a.imu;
-  ia.gnss = a.gnss;
-  ia.imu_csv = a.imu_csv;
-  ia.imu_tag = a.imu_tag;
-  ia.rtklib_pos = a.pos;
-  ia.model = a.model;
-  ia.add = a.add;
-  ia.drop = a.drop;
-  ia.lever = a.lever;
-  ia.pos_height_offset_m = a.pos_height_offset_m;
-  ia.float_std_min_m = a.float_std_min_m;
-  ia.imu_time_shift_s = a.imu_time_shift_s;
-  ia.calibration = a.calibration;
-  assess::NavInputs in = assess::load_nav_inputs(ia);
-  if (a.config.empty()) in.config.output_path = ".";
+  assess::NavInputs in = assess::load_nav_inputs(a.in);
   est::FilterOptions& opt = in.options;
   apply_alignment_args(a, opt);
   std::unique_ptr<est::NavFilter> filter = check_model(a, opt);
@@ -317,33 +287,14 @@ void run_nav(const NavArgs& a) {
 void add_nav_command(CLI::App& app) {
   auto args = std::make_shared<NavArgs>();
   CLI::App* c = app.add_subcommand("nav", "GPS/INS error-state EKF over KF-GINS files (writes a KF-GINS .nav)");
-  c->add_option("--kfgins-config", args->config, "KF-GINS YAML configuration (paths, rates, init state, imunoise, antlever)");
-  c->add_option("--imu", args->imu, "IMU increments (KF-GINS imu.txt), overrides the config");
-  c->add_option("--imu-csv", args->imu_csv, "IMU rates as CSV ax,ay,az[g],gx,gy,gz[deg/s],counter[ms] with an RTKLIB tag file");
-  c->add_option("--imu-tag", args->imu_tag, "RTKLIB time-tag file of --imu-csv (default: FILE.tag)");
-  c->add_option("--imu-time-shift", args->imu_time_shift_s,
-                "added to every IMU time stamp [s]: a known IMU latency (the time_offset effect estimates an unknown one)");
-  c->add_option("--calibration", args->calibration,
-                "IMU calibration file of `ldv calib static`, applied to every increment in the device axes "
-                "(default ldv.calibration; toolbox/calib/README.md)");
-  c->add_option("--gnss", args->gnss, "GNSS solutions (7- or 13-column KF-GINS gnss.txt), overrides the config");
-  c->add_option("--pos", args->pos, "GNSS solutions from an RTKLIB .pos file, overrides the config");
-  c->add_option("--pos-height-offset", args->pos_height_offset_m,
-                "added to the .pos heights [m]: the geoid separation N when the file gives height above MSL "
-                "(e.g. 21.387 for walk_0827)");
-  c->add_option("--float-std-min", args->float_std_min_m,
-                "minimum position std [m] of .pos solutions that are not RTK-fixed (0: as reported)");
+  cli::add_nav_input_options(c, args->in);
   c->add_option("--lcm-log", args->lcm_log, "replay an LCM log (IMU + GNSS_SOLUTION) through the fusion service's engine");
   c->add_option("--history", args->history_s, "with --lcm-log: how late a GNSS fix may arrive [s] (as the live service)");
   c->add_flag("--host-clock-imu", args->host_clock_imu,
               "with --lcm-log: also use IMU samples stamped from the host clock (status bit 0), as fusion's "
               "host_clock_imu does for an IMU without PPS");
   c->add_option("--align-wait", args->align_wait_s, "with --lcm-log: host seconds the alignment waits for GNSS");
-  c->add_option("--model", args->model, "ins15 | kfgins21 | geoldv51 (default kfgins21 or ldv.model)");
-  c->add_option("--add", args->add, "add an effect block (repeatable)");
-  c->add_option("--drop", args->drop, "drop an effect block (repeatable)");
   c->add_option("--out", args->out, "output .nav (default <outputpath>/KF_GINS_Navresult.nav)");
-  c->add_option("--lever", args->lever, "antenna lever arm x y z [m], body front-right-down")->expected(3);
   c->add_option("--week", args->week, "GPS week written in the .nav (default ldv.week, the .pos week, or 0)");
   c->add_option("--std-rate", args->std_rate_hz, "rate of the _std.txt rows [Hz] (0: every IMU sample)");
   c->add_option("--align-speed", args->align_speed_mps,
