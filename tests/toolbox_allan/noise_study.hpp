@@ -39,10 +39,35 @@ inline SensorTruth gx2_gyro() {  // MEMS grade (3DM-GX2 like)
 
 struct StudyResult {
   int seeds = 0, n_ok = 0, b_ok = 0, k_ok = 0, n_cover = 0, b_cover = 0, k_cover = 0, absent_ok = 0;
+  double k_err_sq = 0.0, b_err_sq = 0.0;  // sums of squared relative errors (RMS in the summary)
 };
 
+inline void tally(StudyResult& s, const NoiseFit& f, const SensorTruth& truth) {
+  const TermEstimate &n = f[ModelTerm::kN], &b = f[ModelTerm::kGaussMarkov], &k = f[ModelTerm::kK];
+  const TermEstimate &q = f[ModelTerm::kQ], &rr = f[ModelTerm::kR];
+  ++s.seeds;
+  s.n_ok += std::fabs(n.value / truth.n - 1) < 0.03;
+  s.b_ok += std::fabs(b.value / truth.gm_sigma - 1) < 0.10;
+  s.k_ok += std::fabs(k.value / truth.k - 1) < 0.30;
+  s.n_cover += n.lo <= truth.n && truth.n <= n.hi;
+  s.b_cover += b.lo <= truth.gm_sigma && truth.gm_sigma <= b.hi;
+  s.k_cover += k.lo <= truth.k && truth.k <= k.hi;
+  s.absent_ok += !q.resolved && !rr.resolved && std::isfinite(q.value + q.sigma + rr.value + rr.sigma);
+  s.k_err_sq += std::pow(k.value / truth.k - 1, 2);
+  s.b_err_sq += std::pow(b.value / truth.gm_sigma - 1, 2);
+}
+
+inline void print_summary(const char* what, const StudyResult& s) {
+  std::printf("%s: N within 3%%: %d/%d, B within 10%%: %d/%d, K within 30%%: %d/%d; truth in 95%% interval: N %d B %d K %d; "
+              "absent Q,R: %d; RMS error B %.1f%% K %.1f%%\n",
+              what, s.n_ok, s.seeds, s.b_ok, s.seeds, s.k_ok, s.seeds, s.n_cover, s.b_cover, s.k_cover, s.absent_ok,
+              100 * std::sqrt(s.b_err_sq / s.seeds), 100 * std::sqrt(s.k_err_sq / s.seeds));
+}
+
+// Returns the tally of the reported fit (the likelihood fit); the Allan-curve fit it started from
+// is tallied and printed beside it as the comparison.
 inline StudyResult study(const SensorTruth& truth, double hours, double rate_hz, int seeds) {
-  StudyResult s;
+  StudyResult s, curve;
   AnalysisOptions opt;
   opt.fit_options.gauss_markov = true;
   const double dt = 1.0 / rate_hz;
@@ -51,25 +76,19 @@ inline StudyResult study(const SensorTruth& truth, double hours, double rate_hz,
     const PhaseSeries ps = phase_from_rates(std::move(y), dt, "gyro_x", "rad/s");
     const auto r = analyze({ps}, opt).front();
     EXPECT_TRUE(r.fit.has_value()) << r.fit_error;
+    EXPECT_EQ(r.fit->method, "whittle") << r.likelihood_error;
+    tally(s, *r.fit, truth);
+    if (r.curve_fit) tally(curve, *r.curve_fit, truth);
     const NoiseFit& f = *r.fit;
     const TermEstimate &n = f[ModelTerm::kN], &b = f[ModelTerm::kGaussMarkov], &k = f[ModelTerm::kK];
-    const TermEstimate &q = f[ModelTerm::kQ], &rr = f[ModelTerm::kR];
-    ++s.seeds;
-    s.n_ok += std::fabs(n.value / truth.n - 1) < 0.03;
-    s.b_ok += std::fabs(b.value / truth.gm_sigma - 1) < 0.10;
-    s.k_ok += std::fabs(k.value / truth.k - 1) < 0.30;
-    s.n_cover += n.lo <= truth.n && truth.n <= n.hi;
-    s.b_cover += b.lo <= truth.gm_sigma && truth.gm_sigma <= b.hi;
-    s.k_cover += k.lo <= truth.k && truth.k <= k.hi;
-    s.absent_ok += !q.resolved && !rr.resolved && std::isfinite(q.value + q.sigma + rr.value + rr.sigma);
-    std::printf("seed %2d: N %.4f (%+.1f%%) B %.4f (%+.1f%%, T %.0f s) K %.4f (%+.1f%%)  Q %s R %s\n", seed,
+    std::printf("seed %2d: N %.4f (%+.1f%%) B %.4f (%+.1f%%, T %.0f s) K %.4f (%+.1f%%, sd %.0f%%)  Q %s R %s\n", seed,
                 n.value / kDeg * 60, 100 * (n.value / truth.n - 1), b.value / kDeg * kHour,
                 100 * (b.value / truth.gm_sigma - 1), b.shape, k.value / kDeg * kHour * 60, 100 * (k.value / truth.k - 1),
-                q.resolved ? "resolved" : "absent", rr.resolved ? "resolved" : "absent");
+                100 * k.sigma / truth.k, f[ModelTerm::kQ].resolved ? "resolved" : "absent",
+                f[ModelTerm::kR].resolved ? "resolved" : "absent");
   }
-  std::printf("N within 3%%: %d/%d, B within 10%%: %d/%d, K within 30%%: %d/%d; truth in 95%% interval: N %d B %d K %d; "
-              "absent Q,R: %d\n",
-              s.n_ok, s.seeds, s.b_ok, s.seeds, s.k_ok, s.seeds, s.n_cover, s.b_cover, s.k_cover, s.absent_ok);
+  print_summary("likelihood fit", s);
+  if (curve.seeds) print_summary("Allan-curve fit", curve);
   return s;
 }
 

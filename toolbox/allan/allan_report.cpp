@@ -56,15 +56,24 @@ void print_tables(std::FILE* out, const std::vector<ChannelResult>& results) {
       continue;
     }
     const NoiseFit& f = *r.fit;
-    std::fprintf(out, "  %-4s %-15s %12s %12s %25s  %-9s %12s\n", "term", "unit", "value", "sigma", "95% interval",
-                 "resolved", "slope line");
+    if (r.likelihood) {
+      std::fprintf(out, "  N, B, K: likelihood of the raw data (Whittle; blocks of %.4g s, %ld ordinates); Q, R: Allan-curve fit\n",
+                   r.likelihood->block_s, r.likelihood->ordinates);
+    } else {
+      std::fprintf(out, "  fit to the Allan variance curve (%s)%s%s\n", f.gls ? "generalized LS" : "weighted LS",
+                   r.likelihood_error.empty() ? "" : "; no likelihood fit: ", r.likelihood_error.c_str());
+    }
+    std::fprintf(out, "  %-4s %-15s %12s %12s %25s  %-9s %12s %12s\n", "term", "unit", "value", "sigma", "95% interval",
+                 "resolved", "slope line", r.curve_fit ? "curve fit" : "");
     for (int i = 0; i < 5; ++i) {
       const ModelTerm mt = kPaperTerms[i];
       const EngineeringUnit u = paper_unit(q, kUnitTerms[i]);
       const TermEstimate* t = &f[mt];
+      const TermEstimate* curve = r.curve_fit ? &(*r.curve_fit)[mt] : nullptr;
       std::string extra;
       if (mt == ModelTerm::kB && f[ModelTerm::kGaussMarkov].in_model) {
         t = &f[ModelTerm::kGaussMarkov];
+        if (curve) curve = &(*r.curve_fit)[ModelTerm::kGaussMarkov];
         char buf[64];
         std::snprintf(buf, sizeof buf, "  (Gauss-Markov, T = %.4g s)", t->shape);
         extra = buf;
@@ -79,9 +88,11 @@ void print_tables(std::FILE* out, const std::vector<ChannelResult>& results) {
       }
       char interval[64];
       std::snprintf(interval, sizeof interval, "[%.4g, %.4g]", t->lo * u.from_si, t->hi * u.from_si);
-      std::fprintf(out, "  %-4s %-15s %12.5g %12.3g %25s  %-9s %12.5g%s\n", term_name(kUnitTerms[i]), u.name,
+      char curve_value[32] = "";
+      if (curve) std::snprintf(curve_value, sizeof curve_value, "%.5g", curve->value * u.from_si);
+      std::fprintf(out, "  %-4s %-15s %12.5g %12.3g %25s  %-9s %12.5g %12s%s\n", term_name(kUnitTerms[i]), u.name,
                    t->value * u.from_si, t->sigma * u.from_si, interval, t->resolved ? "yes" : "no",
-                   f.slope_lines[i].value * u.from_si, extra.c_str());
+                   f.slope_lines[i].value * u.from_si, curve_value, extra.c_str());
     }
     const TermEstimate& sine = f[ModelTerm::kSinusoid];
     if (sine.in_model) {
@@ -157,9 +168,25 @@ void write_json(const std::string& path, const std::string& input, const std::ve
           << ", \"tau_s\": " << num(f.slope_lines[i].tau_s) << "}";
       }
       o << "}";
-      o << ",\n      \"fit\": {\"chi2\": " << num(f.chi2) << ", \"points\": " << f.points
+      o << ",\n      \"fit\": {\"method\": " << quoted(f.method) << ", \"chi2\": " << num(f.chi2) << ", \"points\": " << f.points
         << ", \"covariance_inflation\": " << num(f.covariance_inflation)
-        << ", \"gls\": " << (f.gls ? "true" : "false") << "}";
+        << ", \"gls\": " << (f.gls ? "true" : "false");
+      if (r.likelihood) {
+        o << ", \"likelihood_block_s\": " << num(r.likelihood->block_s) << ", \"likelihood_ordinates\": "
+          << r.likelihood->ordinates << ", \"log_likelihood\": " << num(r.likelihood->log_likelihood);
+      }
+      o << "}";
+      if (r.curve_fit) {  // the Allan-curve fit the likelihood started from: the second opinion
+        const NoiseFit& cf = *r.curve_fit;
+        o << ",\n      \"allan_curve_fit\": {\"method\": " << quoted(cf.method);
+        for (int i = 0; i < 5; ++i) {
+          const ModelTerm mt = kPaperTerms[i];
+          const TermEstimate& t = (mt == ModelTerm::kB && gm) ? cf[ModelTerm::kGaussMarkov] : cf[mt];
+          o << ", \"" << term_name(kUnitTerms[i]) << "\": {\"value\": " << num(t.value) << ", \"sigma\": " << num(t.sigma)
+            << ", \"lo\": " << num(t.lo) << ", \"hi\": " << num(t.hi) << ", \"resolved\": " << (t.resolved ? "true" : "false") << "}";
+        }
+        o << "}";
+      }
       o << ",\n      \"misfit\": [";
       for (size_t i = 0; i < f.misfit.size(); ++i) {
         const DecadeMisfit& m = f.misfit[i];

@@ -59,6 +59,20 @@ ChannelResult analyze_channel(const PhaseSeries& s, const AnalysisOptions& opt) 
     } catch (const std::invalid_argument& e) {
       r.fit_error = e.what();
     }
+    // Inertial rates (not clock phase, whose noise types the model does not span): refine by the
+    // likelihood of the raw data, which keeps what the curve condenses away.
+    const FitOptions& fo = opt.fit_options;
+    if (r.fit && fo.likelihood && s.source == DataKind::kFrequency && !fo.sinusoid) {
+      try {
+        WhittleSummary summary;
+        NoiseFit refined = whittle_fit(s, *r.fit, fo, fo.likelihood_block_s, &summary);
+        r.curve_fit = std::move(r.fit);
+        r.fit = std::move(refined);
+        r.likelihood = summary;
+      } catch (const std::invalid_argument& e) {
+        r.likelihood_error = e.what();
+      }
+    }
   }
   return r;
 }

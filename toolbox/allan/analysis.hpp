@@ -11,6 +11,7 @@
 #include "toolbox/allan/noise_fit.hpp"
 #include "toolbox/allan/phase_series.hpp"
 #include "toolbox/allan/tau_list.hpp"
+#include "toolbox/allan/whittle_fit.hpp"
 
 namespace ldv::allan {
 
@@ -36,6 +37,11 @@ struct ChannelResult {
   std::optional<Deviation> extra_kind;
   std::optional<NoiseFit> fit;           // empty when fewer than 3 points or fit disabled
   std::string fit_error;                 // why there is no fit
+  // With the likelihood refinement: `fit` is it, `curve_fit` the Allan-curve fit it started from
+  // (a second opinion), `likelihood` its summary. `likelihood_error`: why it was not applied.
+  std::optional<NoiseFit> curve_fit;
+  std::optional<WhittleSummary> likelihood;
+  std::string likelihood_error;
 };
 
 // Averaging factors for a channel: explicit taus rounded to whole samples (std::invalid_argument

@@ -9,6 +9,7 @@
 
 #include "toolbox/allan/avar_covariance.hpp"
 #include "toolbox/allan/chi_square.hpp"
+#include "toolbox/allan/nonnegative_lsq.hpp"
 
 namespace ldv::allan {
 namespace {
@@ -37,30 +38,6 @@ double model_at(const Basis& b, const std::vector<double>& c, double tau) {
   return m;
 }
 
-// Least squares of the whitened system restricted to `active` (bit mask); false when singular.
-bool solve_subset(const Eigen::MatrixXd& A, const Eigen::VectorXd& y, unsigned active, Eigen::VectorXd& c) {
-  const int p = static_cast<int>(A.cols());
-  std::vector<int> idx;
-  for (int k = 0; k < p; ++k) if (active & (1u << k)) idx.push_back(k);
-  c = Eigen::VectorXd::Zero(p);
-  if (idx.empty()) return true;
-  Eigen::MatrixXd As(A.rows(), idx.size());
-  for (size_t j = 0; j < idx.size(); ++j) As.col(j) = A.col(idx[j]);
-  // Column scaling: the basis functions span many orders of magnitude in tau.
-  Eigen::VectorXd scale(idx.size());
-  for (size_t j = 0; j < idx.size(); ++j) {
-    scale(j) = As.col(j).norm();
-    if (!(scale(j) > 0)) return false;
-    As.col(j) /= scale(j);
-  }
-  const Eigen::MatrixXd N = As.transpose() * As;
-  Eigen::LDLT<Eigen::MatrixXd> ldlt(N);
-  if (ldlt.info() != Eigen::Success || ldlt.rcond() < 1e-14) return false;
-  const Eigen::VectorXd cs = ldlt.solve(As.transpose() * y);
-  for (size_t j = 0; j < idx.size(); ++j) c(idx[j]) = cs(j) / scale(j);
-  return true;
-}
-
 Eigen::MatrixXd design(const Basis& b, const Data& d) {
   const int n = static_cast<int>(d.tau.size()), p = static_cast<int>(b.terms.size());
   Eigen::MatrixXd A(n, p);
@@ -75,21 +52,12 @@ Eigen::MatrixXd design(const Basis& b, const Data& d) {
 // (at most 2^6 for our handful of terms): the optimum is the best subset solution that is
 // non-negative.
 LinearFit nnls(const Basis& b, const Data& d, const Eigen::MatrixXd& Wh) {
-  const int n = static_cast<int>(d.tau.size()), p = static_cast<int>(b.terms.size());
+  const int n = static_cast<int>(d.tau.size());
   const Eigen::MatrixXd A = Wh * design(b, d);
   const Eigen::VectorXd y = Wh * Eigen::Map<const Eigen::VectorXd>(d.avar.data(), n);
   LinearFit best;
-  best.c.assign(p, 0.0);
-  for (unsigned mask = 0; mask < (1u << p); ++mask) {
-    Eigen::VectorXd c;
-    if (!solve_subset(A, y, mask, c)) continue;
-    if ((c.array() < 0).any()) continue;
-    const double chi2 = (A * c - y).squaredNorm();
-    if (chi2 < best.chi2) {
-      best.chi2 = chi2;
-      best.c.assign(c.data(), c.data() + p);
-    }
-  }
+  const Eigen::VectorXd c = nonnegative_least_squares(A, y, &best.chi2);
+  best.c.assign(c.data(), c.data() + c.size());
   return best;
 }
 
@@ -329,6 +297,24 @@ double NoiseFit::model_avar(double tau) const {
   return m;
 }
 
+void set_term_interval(TermEstimate& t, double c, double sigma_c, double z) {
+  t.value = std::sqrt(c);
+  // The coefficient enters squared: intervals are taken on c and mapped through the square root,
+  // which stays meaningful at c = 0 (where the delta method would divide by zero).
+  t.sigma = 0.5 * (std::sqrt(c + sigma_c) - std::sqrt(std::max(0.0, c - sigma_c)));
+  if (c > 2.0 * sigma_c) {
+    // A clearly present term: its variance-like coefficient has a spread proportional to itself
+    // (a chi-square-like estimate), so the interval is symmetric in ln c, not in c; a low
+    // estimate then still reaches up to the truth (a Wald interval in c would not).
+    const double s_ln = sigma_c / c;
+    t.lo = std::sqrt(c * std::exp(-z * s_ln));
+    t.hi = std::sqrt(c * std::exp(z * s_ln));
+  } else {
+    t.lo = std::sqrt(std::max(0.0, c - z * sigma_c));
+    t.hi = std::sqrt(c + z * sigma_c);
+  }
+}
+
 NoiseFit fit_noise_model(const std::vector<StabilityPoint>& pts, const FitOptions& opt) {
   Data d;
   for (const auto& p : pts) {
@@ -365,6 +351,7 @@ NoiseFit fit_noise_model(const std::vector<StabilityPoint>& pts, const FitOption
   }
   out.chi2 = model.fit.chi2;
   out.gls = gls;
+  out.method = gls ? "allan_gls" : "allan_wls";
 
   // Without GLS (points of another kind): the weighted LS covariance assumes independent points,
   // which is optimistic for overlapping estimates; about one independent point per octave of tau
@@ -397,21 +384,7 @@ NoiseFit fit_noise_model(const std::vector<StabilityPoint>& pts, const FitOption
               out.covariance_inflation;
     }
     const double c = model.fit.c[k], sc = std::sqrt(std::max(var_c, 0.0));
-    t.value = std::sqrt(c);
-    // The coefficient enters squared: intervals are taken on c and mapped through the square root,
-    // which stays meaningful at c = 0 (where the delta method would divide by zero).
-    t.sigma = 0.5 * (std::sqrt(c + sc) - std::sqrt(std::max(0.0, c - sc)));
-    if (c > 2.0 * sc) {
-      // A clearly present term: its variance-like coefficient has a spread proportional to itself
-      // (a chi-square-like estimate), so the interval is symmetric in ln c, not in c; a low
-      // estimate then still reaches up to the truth (a Wald interval in c would not).
-      const double s_ln = sc / c;
-      t.lo = std::sqrt(c * std::exp(-z * s_ln));
-      t.hi = std::sqrt(c * std::exp(z * s_ln));
-    } else {
-      t.lo = std::sqrt(std::max(0.0, c - z * sc));
-      t.hi = std::sqrt(c + z * sc);
-    }
+    set_term_interval(t, c, sc, z);
     bool dominant = false;
     for (double tau : d.tau) {
       const double part = c * term_avar(terms[k], tau, t.shape);

@@ -25,6 +25,10 @@ struct FitOptions {
   // Generalized least squares with the full covariance of overlapping Allan variance estimates
   // (avar_covariance.hpp) when the points allow it; false: independent-points weights (+ inflation).
   bool gls = true;
+  // Refine N, B / GM and K by the likelihood of the raw data (whittle_fit.hpp) for rate input;
+  // false: the Allan-curve fit only.
+  bool likelihood = true;
+  double likelihood_block_s = 0.02;  // the rate is averaged over blocks of this length first (>= tau0)
 };
 
 struct TermEstimate {
@@ -58,6 +62,10 @@ struct NoiseFit {
   int points = 0;
   double covariance_inflation = 1.0;  // 1 with GLS; else for correlated overlapping estimates (noise_fit.cpp)
   bool gls = false;               // fitted by generalized least squares (full covariance across tau)
+  // "allan_gls" / "allan_wls": fitted to the Allan variance curve (generalized / weighted LS);
+  // "whittle": N, B or GM, K by the likelihood of the raw data (whittle_fit.hpp), the rest as fitted
+  // to the curve; chi2, points and misfit always describe the curve fit.
+  std::string method;
   std::array<SlopeLine, 5> slope_lines;  // Q N B K R
   std::vector<DecadeMisfit> misfit;
 
@@ -65,6 +73,10 @@ struct NoiseFit {
   TermEstimate& operator[](ModelTerm t) { return terms[static_cast<int>(t)]; }
   double model_avar(double tau_s) const;  // fitted total Allan variance
 };
+
+// Value, 1-sigma and interval of a term from its squared coefficient c >= 0 and the 1-sigma
+// sigma_c of c; z: the normal quantile of the interval.
+void set_term_interval(TermEstimate& t, double c, double sigma_c, double z);
 
 // pts: an overlapping (or any Allan-type) deviation with EDFs. Points without EDF are skipped.
 // Throws std::invalid_argument with fewer than 3 usable points.

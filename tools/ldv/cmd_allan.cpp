@@ -22,7 +22,8 @@ struct AllanArgs {
   std::string time_column;
   double rate = 0, tau0 = 0, nominal = 0, max_tau = 0, confidence = ldv::allan::kOneSigmaConfidence;
   int per_decade = 10, threads = 0;
-  bool gauss_markov = false, sinusoid = false, no_fit = false;
+  bool gauss_markov = false, sinusoid = false, no_fit = false, curve_only = false;
+  double likelihood_block_s = 0.02;
 };
 
 std::string guess_format(const std::string& path) {
@@ -69,6 +70,8 @@ void run_allan(const AllanArgs& a) {
   f.r = a.terms.find('R') != std::string::npos;
   f.gauss_markov = a.gauss_markov;
   f.sinusoid = a.sinusoid;
+  f.likelihood = !a.curve_only;
+  f.likelihood_block_s = a.likelihood_block_s;
   for (const auto& c : channels) {
     spdlog::info("allan: {} [{}]: {} samples, tau0 {} s", c.name, c.unit, c.x.size() - 1, c.tau0_s);
   }
@@ -140,6 +143,11 @@ void add_allan_command(CLI::App& app) {
   cmd->add_flag("--gauss-markov", args->gauss_markov, "model the bias instability as Gauss-Markov (sigma, T) instead of flat B");
   cmd->add_flag("--sinusoid", args->sinusoid, "add a sinusoidal term to the fit");
   cmd->add_flag("--no-fit", args->no_fit, "deviations only");
+  cmd->add_flag("--curve-only", args->curve_only,
+                "fit the Allan variance curve only (default for rate input: refine N, B, K by the likelihood of the raw data)");
+  cmd->add_option("--likelihood-block", args->likelihood_block_s,
+                  "the likelihood fit averages the rate over blocks of this length first [s]")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--threads", args->threads, "worker threads (default: one per core)");
   cmd->callback([args] { run_allan(*args); });
 }

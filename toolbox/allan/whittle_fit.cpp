@@ -1,0 +1,371 @@
+#include "toolbox/allan/whittle_fit.hpp"
+
+#include <unsupported/Eigen/FFT>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "toolbox/allan/block_spectrum.hpp"
+#include "toolbox/allan/chi_square.hpp"
+#include "toolbox/allan/nonnegative_lsq.hpp"
+
+namespace ldv::allan {
+namespace {
+
+// The periodogram, ordinate by ordinate at the low frequencies where the slow terms live, then in
+// bins 1 % wide (the densities are smooth there; a bin counts as `count` ordinates at its mean).
+struct Periodogram {
+  std::vector<double> nu, mean_ordinate, count;
+  double tau_b = 0.0;
+  long ordinates = 0, blocks = 0;
+  double taper_variance_factor = 1.0;  // n sum h^4 / (sum h^2)^2: what the taper costs in variance
+};
+
+// Largest 2^a 3^b 5^c <= n: the FFT stays O(n log n) without padding (padding would taper the
+// series and change the ordinates' distribution).
+long smooth_length(long n) {
+  for (long l = n; l > 1; --l) {
+    long r = l;
+    for (long p : {2L, 3L, 5L}) while (r % p == 0) r /= p;
+    if (r == 1) return l;
+  }
+  return n;
+}
+
+Periodogram periodogram_of_block_differences(const PhaseSeries& s, long m) {
+  Periodogram p;
+  p.tau_b = m * s.tau0_s;
+  const long blocks = (static_cast<long>(s.x.size()) - 1) / m;
+  if (blocks < 65) {
+    throw std::invalid_argument("likelihood fit: " + std::to_string(blocks) + " blocks of " + std::to_string(p.tau_b) +
+                                " s; at least 65 are needed");
+  }
+  const long n = smooth_length(blocks - 1);
+  p.blocks = n;
+  // Taper: a split cosine bell over 10 % of the record at each end. Without it, d's sum telescopes
+  // to its end values (ybar_n - ybar_0), which then sit in every ordinate as a flat floor of about
+  // 2 N^2 / (tau_b n): exactly the signature of a rate random walk, read as a K several times the
+  // truth on pure white noise. Normalised by sum h^2, so the ordinates keep the mean S(nu).
+  // The mean removed is the taper-weighted one: it takes out a rate ramp R (a constant R tau_b in
+  // d) and, unlike the plain mean (ybar_n - ybar_0) / n, carries almost no noise of the end
+  // values, so it does not leak that floor back in through the taper.
+  const long edge = std::max(1L, n / 10);
+  std::vector<double> d(n), h(n);
+  double sum_h = 0.0, sum_hd = 0.0, h2 = 0.0, h4 = 0.0;
+  for (long j = 0; j < n; ++j) {
+    const long from_end = std::min(j, n - 1 - j);
+    h[j] = from_end < edge ? 0.5 * (1.0 - std::cos(M_PI * (from_end + 0.5) / edge)) : 1.0;
+    // ybar_{j+1} - ybar_j from the phase: the second difference over a block, / tau_b.
+    d[j] = (s.x[(j + 2) * m] - 2.0 * s.x[(j + 1) * m] + s.x[j * m]) / p.tau_b;
+    sum_h += h[j], sum_hd += h[j] * d[j], h2 += h[j] * h[j], h4 += std::pow(h[j], 4);
+  }
+  p.taper_variance_factor = n * h4 / (h2 * h2);
+  const double mean = sum_hd / sum_h;
+  for (long j = 0; j < n; ++j) d[j] = (d[j] - mean) * h[j];
+  Eigen::FFT<double> fft;
+  std::vector<std::complex<double>> spec;
+  fft.fwd(spec, d);
+  constexpr long kSingleUpTo = 200;
+  const long k_max = (n - 1) / 2;  // frequency 0 and Nyquist excluded
+  for (long k = 1; k <= k_max;) {
+    const long width = k <= kSingleUpTo ? 1 : std::max(1L, k / 100);
+    const long k_end = std::min(k_max + 1, k + width);
+    double sum = 0.0, k_mean = 0.0;
+    for (long i = k; i < k_end; ++i) sum += std::norm(spec[i]) / h2, k_mean += static_cast<double>(i);
+    const double c = static_cast<double>(k_end - k);
+    p.nu.push_back(k_mean / c / n);
+    p.mean_ordinate.push_back(sum / c);
+    p.count.push_back(c);
+    p.ordinates += k_end - k;
+    k = k_end;
+  }
+  return p;
+}
+
+struct Model {
+  std::vector<ModelTerm> terms;  // estimated
+  double gm_t_s = 0.0;
+  Eigen::MatrixXd density;       // bins x terms, unit coefficients
+  Eigen::VectorXd fixed;         // density of the held terms (Q)
+};
+
+void set_densities(Model& mod, const Periodogram& p) {
+  const long nb = static_cast<long>(p.nu.size());
+  mod.density.resize(nb, mod.terms.size());
+  for (long b = 0; b < nb; ++b) {
+    for (size_t j = 0; j < mod.terms.size(); ++j) {
+      mod.density(b, j) = block_difference_density(mod.terms[j], p.nu[b], p.tau_b, mod.gm_t_s);
+    }
+  }
+}
+
+struct Solution {
+  Eigen::VectorXd c;  // squared coefficients of Model::terms
+  double log_likelihood = -std::numeric_limits<double>::infinity();
+  int iterations = 0;
+};
+
+Eigen::VectorXd model_density(const Model& mod, const Eigen::VectorXd& c) {
+  Eigen::VectorXd s = mod.fixed + mod.density * c;
+  const double floor = 1e-12 * s.maxCoeff();
+  return s.cwiseMax(floor);
+}
+
+double whittle_log_likelihood(const Periodogram& p, const Eigen::VectorXd& s) {
+  double l = 0.0;
+  for (size_t b = 0; b < p.nu.size(); ++b) l -= p.count[b] * (std::log(s(b)) + p.mean_ordinate[b] / s(b));
+  return l;
+}
+
+// Fisher scoring at a fixed Gauss-Markov time constant. The Whittle score, sum count (I - S) dS/dc
+// / S^2 = 0, is the normal equation of least squares of I on the densities with weights count/S^2
+// at the current S; re-weighting until it settles is Fisher scoring, kept non-negative exactly.
+Solution maximise_at_fixed_shape(const Model& mod, const Periodogram& p, Eigen::VectorXd c) {
+  Solution sol;
+  const Eigen::VectorXd ordinates = Eigen::Map<const Eigen::VectorXd>(p.mean_ordinate.data(), p.nu.size());
+  const Eigen::VectorXd counts = Eigen::Map<const Eigen::VectorXd>(p.count.data(), p.nu.size());
+  for (int it = 0; it < 200; ++it) {
+    const Eigen::VectorXd s = model_density(mod, c);
+    const Eigen::VectorXd w = counts.cwiseSqrt().cwiseQuotient(s);
+    const Eigen::MatrixXd A = w.asDiagonal() * mod.density;
+    const Eigen::VectorXd y = w.cwiseProduct(ordinates - mod.fixed);
+    const Eigen::VectorXd next = nonnegative_least_squares(A, y);
+    double change = 0.0;
+    for (int j = 0; j < c.size(); ++j) {
+      const double a = std::sqrt(c(j)), b = std::sqrt(next(j));
+      if (a + b > 0) change = std::max(change, std::fabs(a - b) / (a + b));
+    }
+    c = next;
+    sol.iterations = it + 1;
+    if (change < 1e-8) break;
+  }
+  sol.c = c;
+  sol.log_likelihood = whittle_log_likelihood(p, model_density(mod, c));
+  return sol;
+}
+
+// Profile likelihood over ln T: a log grid, then golden section around its best point.
+Solution maximise(Model& mod, const Periodogram& p, const Eigen::VectorXd& start, int gm_index) {
+  if (gm_index < 0) {
+    set_densities(mod, p);
+    return maximise_at_fixed_shape(mod, p, start);
+  }
+  auto at = [&](double ln_t) {
+    mod.gm_t_s = std::exp(ln_t);
+    set_densities(mod, p);
+    return maximise_at_fixed_shape(mod, p, start);
+  };
+  // The Gauss-Markov hump sits at 1.89 T: T from two blocks to a third of the record.
+  const double lo = std::log(2.0 * p.tau_b), hi = std::log(p.blocks * p.tau_b / 3.0);
+  const int grid = 24;
+  const double step = (hi - lo) / (grid - 1);
+  double best_ln = lo, best_l = -std::numeric_limits<double>::infinity();
+  for (int g = 0; g < grid; ++g) {
+    const double l = at(lo + g * step).log_likelihood;
+    if (l > best_l) best_l = l, best_ln = lo + g * step;
+  }
+  double a = best_ln - step, z = best_ln + step;
+  const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
+  double x1 = z - phi * (z - a), x2 = a + phi * (z - a);
+  double f1 = at(x1).log_likelihood, f2 = at(x2).log_likelihood;
+  for (int it = 0; it < 30; ++it) {
+    if (f1 > f2) z = x2, x2 = x1, f2 = f1, x1 = z - phi * (z - a), f1 = at(x1).log_likelihood;
+    else a = x1, x1 = x2, f1 = f2, x2 = a + phi * (z - a), f2 = at(x2).log_likelihood;
+  }
+  const double ln_t = std::max(f1, f2) >= best_l ? (f1 > f2 ? x1 : x2) : best_ln;
+  return at(ln_t);
+}
+
+// Inverse Fisher information of the squared coefficients in `idx` (and ln T last when the
+// Gauss-Markov term is among them with c > 0): sum count g g^T / S^2, g = dS/dparameter.
+Eigen::MatrixXd fisher_covariance(const Model& mod, const Periodogram& p, const Eigen::VectorXd& c,
+                                  const std::vector<int>& idx, int gm_index) {
+  const bool with_shape = gm_index >= 0 && c(gm_index) > 0 &&
+                          std::find(idx.begin(), idx.end(), gm_index) != idx.end();
+  const int q = static_cast<int>(idx.size()) + (with_shape ? 1 : 0);
+  const long nb = static_cast<long>(p.nu.size());
+  const Eigen::VectorXd s = model_density(mod, c);
+  Eigen::MatrixXd g(nb, q);
+  for (size_t j = 0; j < idx.size(); ++j) g.col(j) = mod.density.col(idx[j]);
+  if (with_shape) {
+    const double h = 1e-4;
+    for (long b = 0; b < nb; ++b) {
+      const double up = block_difference_density(ModelTerm::kGaussMarkov, p.nu[b], p.tau_b, mod.gm_t_s * std::exp(h));
+      const double dn = block_difference_density(ModelTerm::kGaussMarkov, p.nu[b], p.tau_b, mod.gm_t_s * std::exp(-h));
+      g(b, q - 1) = c(gm_index) * (up - dn) / (2.0 * h);
+    }
+  }
+  for (long b = 0; b < nb; ++b) g.row(b) *= std::sqrt(p.count[b]) / s(b);
+  Eigen::VectorXd scale(q);
+  for (int j = 0; j < q; ++j) {
+    scale(j) = g.col(j).norm();
+    if (scale(j) > 0) g.col(j) /= scale(j);
+  }
+  const Eigen::MatrixXd info = g.transpose() * g;
+  const Eigen::MatrixXd cov = info.completeOrthogonalDecomposition().pseudoInverse();
+  // Tapered ordinates carry less information than the count says (about 12 % more variance here).
+  return p.taper_variance_factor * scale.cwiseInverse().asDiagonal() * cov * scale.cwiseInverse().asDiagonal();
+}
+
+
+// Profile likelihood of term j's squared coefficient: the maximum over the other terms (and the
+// Gauss-Markov T, searched within a factor e of its estimate) with c_j held at cj.
+double profile_log_likelihood(const Model& mod, const Periodogram& p, const Solution& best, int j, double cj) {
+  Model sub;
+  std::vector<int> others;
+  for (int i = 0; i < static_cast<int>(mod.terms.size()); ++i) {
+    if (i != j) sub.terms.push_back(mod.terms[i]), others.push_back(i);
+  }
+  Eigen::VectorXd start(others.size());
+  for (size_t i = 0; i < others.size(); ++i) start(i) = best.c(others[i]);
+  const bool has_gm = std::find(mod.terms.begin(), mod.terms.end(), ModelTerm::kGaussMarkov) != mod.terms.end();
+  auto at = [&](double ln_t) {
+    sub.gm_t_s = std::exp(ln_t);
+    set_densities(sub, p);
+    sub.fixed = mod.fixed;
+    for (size_t b = 0; b < p.nu.size(); ++b) {
+      sub.fixed(b) += cj * block_difference_density(mod.terms[j], p.nu[b], p.tau_b, sub.gm_t_s);
+    }
+    if (sub.terms.empty()) return whittle_log_likelihood(p, model_density(sub, Eigen::VectorXd()));
+    return maximise_at_fixed_shape(sub, p, start).log_likelihood;
+  };
+  const double ln_t0 = std::log(std::max(mod.gm_t_s, 1e-300));
+  if (!has_gm) return at(ln_t0);
+  double a = ln_t0 - 1.0, z = ln_t0 + 1.0;
+  const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
+  double x1 = z - phi * (z - a), x2 = a + phi * (z - a), f1 = at(x1), f2 = at(x2);
+  for (int it = 0; it < 12; ++it) {
+    if (f1 > f2) z = x2, x2 = x1, f2 = f1, x1 = z - phi * (z - a), f1 = at(x1);
+    else a = x1, x1 = x2, f1 = f2, x2 = a + phi * (z - a), f2 = at(x2);
+  }
+  return std::max({f1, f2, at(ln_t0)});
+}
+
+// Likelihood-ratio interval of c_j: where the profile falls `drop` (chi2_1 quantile / 2) below
+// the maximum. Unlike the Fisher interval, it does not shrink with a low estimate (the
+// information about a variance is evaluated at that variance), which matters for a term seen
+// in a handful of ordinates, like K in a few hours of a tactical gyro.
+std::pair<double, double> profile_interval(const Model& mod, const Periodogram& p, const Solution& best, int j,
+                                           double drop, double sigma_c) {
+  const double target = best.log_likelihood - drop;
+  auto below = [&](double c) { return profile_log_likelihood(mod, p, best, j, c) < target; };
+  const double c0 = best.c(j) > 0 ? best.c(j) : std::max(sigma_c, 1e-300);
+  auto bisect = [&](double inside, double outside) {  // in ln c
+    for (int it = 0; it < 14; ++it) {
+      const double mid = std::sqrt(inside * outside);
+      (below(mid) ? outside : inside) = mid;
+    }
+    return std::sqrt(inside * outside);
+  };
+  double hi = c0 * 2.0;
+  int grow = 0;
+  while (!below(hi) && grow++ < 40) hi *= 2.0;
+  const double upper = bisect(hi / 2.0 < c0 ? c0 : hi / 2.0, hi);
+  double lower = 0.0;
+  if (best.c(j) > 0 && below(0.0)) {
+    double lo = best.c(j) / 2.0;
+    int shrink = 0;
+    while (!below(lo) && shrink++ < 60) lo /= 2.0;
+    lower = bisect(2.0 * lo > best.c(j) ? best.c(j) : 2.0 * lo, lo);
+  }
+  return {lower, upper};
+}
+
+}  // namespace
+
+NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptions& opt, double block_s,
+                     WhittleSummary* summary) {
+  if (opt.sinusoid) throw std::invalid_argument("likelihood fit: not with a sinusoid in the model");
+  const long m = std::max(1L, std::lround(block_s / s.tau0_s));
+  const Periodogram p = periodogram_of_block_differences(s, m);
+
+  Model mod;
+  if (opt.n) mod.terms.push_back(ModelTerm::kN);
+  if (opt.b && !opt.gauss_markov) mod.terms.push_back(ModelTerm::kB);
+  if (opt.k) mod.terms.push_back(ModelTerm::kK);
+  int gm_index = -1;
+  if (opt.gauss_markov) {
+    gm_index = static_cast<int>(mod.terms.size());
+    mod.terms.push_back(ModelTerm::kGaussMarkov);
+    mod.gm_t_s = curve[ModelTerm::kGaussMarkov].shape;
+  }
+  if (mod.terms.empty()) throw std::invalid_argument("likelihood fit: none of N, B, K in the model");
+  const double q = curve[ModelTerm::kQ].in_model ? curve[ModelTerm::kQ].value : 0.0;
+  mod.fixed.resize(static_cast<long>(p.nu.size()));
+  for (size_t b = 0; b < p.nu.size(); ++b) mod.fixed(b) = q * q * block_difference_density(ModelTerm::kQ, p.nu[b], p.tau_b);
+
+  // Start from the curve fit; a term it left at 0 starts small but positive, so the scoring can
+  // still bring it in.
+  Eigen::VectorXd start(mod.terms.size());
+  set_densities(mod, p);
+  for (size_t j = 0; j < mod.terms.size(); ++j) {
+    const double v = curve[mod.terms[j]].value;
+    double reach = 0.0;  // the coefficient at which this term alone would explain some bin
+    for (size_t b = 0; b < p.nu.size(); ++b) reach = std::max(reach, p.mean_ordinate[b] / std::max(mod.density(b, j), 1e-300));
+    start(j) = std::max(v * v, 1e-4 * reach);
+  }
+  const Solution sol = maximise(mod, p, start, gm_index);
+
+  NoiseFit out = curve;
+  out.method = "whittle";
+  const double z = normal_quantile(0.5 + 0.5 * opt.interval_confidence);
+  std::vector<int> active, all;
+  for (int j = 0; j < sol.c.size(); ++j) {
+    all.push_back(j);
+    if (sol.c(j) > 0) active.push_back(j);
+  }
+  const Eigen::MatrixXd cov_active = fisher_covariance(mod, p, sol.c, active, gm_index);
+  const Eigen::MatrixXd cov_all = fisher_covariance(mod, p, sol.c, all, gm_index);
+  std::vector<double> sigma_c(sol.c.size()), sigma_free(sol.c.size());
+  for (int j = 0; j < sol.c.size(); ++j) {
+    const auto it = std::find(active.begin(), active.end(), j);
+    double var_c;
+    if (it != active.end()) {
+      var_c = cov_active(it - active.begin(), it - active.begin());
+    } else {  // at the bound: its uncertainty as if it were free, next to the active terms
+      std::vector<int> with = active;
+      with.push_back(j);
+      var_c = fisher_covariance(mod, p, sol.c, with, gm_index)(with.size() - 1, with.size() - 1);
+    }
+    sigma_c[j] = std::sqrt(std::max(0.0, var_c));
+    sigma_free[j] = std::sqrt(std::max(0.0, cov_all(j, j)));
+    TermEstimate& t = out[mod.terms[j]];
+    t.in_model = true;
+    t.shape = mod.terms[j] == ModelTerm::kGaussMarkov ? mod.gm_t_s : 0.0;
+    t.shape_sigma = 0.0;
+    set_term_interval(t, sol.c(j), sigma_c[j], z);
+    const auto [lo, hi] = profile_interval(mod, p, sol, j, 0.5 * z * z, sigma_c[j]);
+    t.lo = std::sqrt(lo);
+    t.hi = std::sqrt(hi);
+  }
+  if (gm_index >= 0 && sol.c(gm_index) > 0) {
+    const long last = static_cast<long>(active.size());
+    out[ModelTerm::kGaussMarkov].shape_sigma = mod.gm_t_s * std::sqrt(std::max(0.0, cov_active(last, last)));
+  }
+  // Resolved: significant with every term free and dominant (>= half the Allan variance of the
+  // whole model, curve-fit Q and R included) somewhere between tau0 and a quarter of the record.
+  const double tau_lo = s.tau0_s, tau_hi = 0.25 * s.tau0_s * (static_cast<double>(s.x.size()) - 1);
+  for (int j = 0; j < sol.c.size(); ++j) {
+    TermEstimate& t = out[mod.terms[j]];
+    bool dominant = false;
+    for (int i = 0; i <= 60 && tau_hi > tau_lo; ++i) {
+      const double tau = tau_lo * std::pow(tau_hi / tau_lo, i / 60.0);
+      if (sol.c(j) * term_avar(mod.terms[j], tau, t.shape) >= 0.5 * out.model_avar(tau)) dominant = true;
+    }
+    t.resolved = sol.c(j) > 2.0 * std::max(sigma_c[j], sigma_free[j]) && dominant;
+  }
+  if (summary) {
+    summary->block_s = p.tau_b;
+    summary->ordinates = p.ordinates;
+    summary->log_likelihood = sol.log_likelihood;
+    summary->iterations = sol.iterations;
+  }
+  return out;
+}
+
+}  // namespace ldv::allan
