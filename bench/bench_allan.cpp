@@ -8,6 +8,7 @@
 #include <random>
 #include <thread>
 
+#include "toolbox/allan/analysis.hpp"
 #include "toolbox/allan/deviation.hpp"
 #include "toolbox/allan/phase_series.hpp"
 #include "toolbox/allan/tau_list.hpp"
@@ -70,8 +71,26 @@ void BM_Mdev_16h_100Hz_6axes(benchmark::State& s) { run({Deviation::kMdev}, s); 
 void BM_Hdev_16h_100Hz_6axes(benchmark::State& s) { run({Deviation::kHdev}, s); }
 void BM_Ohdev_16h_100Hz_6axes(benchmark::State& s) { run({Deviation::kOhdev}, s); }
 
+// The whole `ldv allan` analysis of one axis of the 16 h record (OADEV with intervals and the GM
+// noise fit), the Allan-curve fit alone against the curve fit plus the likelihood refinement:
+// what the refinement costs.
+void analyse_one_axis(bool likelihood, benchmark::State& state) {
+  const PhaseSeries& axis = six_axes().front();
+  AnalysisOptions opt;
+  opt.fit_options.gauss_markov = true;
+  opt.fit_options.likelihood = likelihood;
+  for (auto _ : state) {
+    const auto r = analyze({axis}, opt).front();
+    benchmark::DoNotOptimize(r.fit->model_avar(1.0));
+  }
+}
+void BM_Analysis_CurveFit_16h_100Hz_1axis(benchmark::State& s) { analyse_one_axis(false, s); }
+void BM_Analysis_CurveAndLikelihoodFit_16h_100Hz_1axis(benchmark::State& s) { analyse_one_axis(true, s); }
+
 }  // namespace
 
+BENCHMARK(BM_Analysis_CurveFit_16h_100Hz_1axis)->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
+BENCHMARK(BM_Analysis_CurveAndLikelihoodFit_16h_100Hz_1axis)->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
 BENCHMARK(BM_Oadev_Mdev_Ohdev_16h_100Hz_6axes)->Unit(benchmark::kMillisecond)->Iterations(2)->UseRealTime();
 BENCHMARK(BM_Oadev_16h_100Hz_6axes)->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
 BENCHMARK(BM_Mdev_16h_100Hz_6axes)->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();

@@ -24,6 +24,9 @@ struct Periodogram {
   double tau_b = 0.0;
   long ordinates = 0, blocks = 0;
   double taper_variance_factor = 1.0;  // n sum h^4 / (sum h^2)^2: what the taper costs in variance
+  // For the ramp: the taper-weighted mean of d, sum h, sum h^2, sum (h_j - h_{j-1})^2, edge length.
+  double weighted_mean = 0.0, sum_h = 0.0, sum_h2 = 0.0, sum_dh2 = 0.0;
+  long edge = 1;
 };
 
 // Largest 2^a 3^b 5^c <= n: the FFT stays O(n log n) without padding (padding would taper the
@@ -66,6 +69,8 @@ Periodogram periodogram_of_block_differences(const PhaseSeries& s, long m) {
   }
   p.taper_variance_factor = n * h4 / (h2 * h2);
   const double mean = sum_hd / sum_h;
+  p.weighted_mean = mean, p.sum_h = sum_h, p.sum_h2 = h2, p.edge = edge;
+  for (long j = 1; j < n; ++j) p.sum_dh2 += (h[j] - h[j - 1]) * (h[j] - h[j - 1]);
   for (long j = 0; j < n; ++j) d[j] = (d[j] - mean) * h[j];
   Eigen::FFT<double> fft;
   std::vector<std::complex<double>> spec;
@@ -276,6 +281,26 @@ std::pair<double, double> profile_interval(const Model& mod, const Periodogram& 
   return {lower, upper};
 }
 
+
+// The rate ramp R from the taper-weighted mean of d (= R tau_b plus noise). Its variance,
+// sum h_j h_k gamma(j - k) / (sum h)^2: a random walk's d is white at frequency 0 (K^2 tau_b
+// sum h^2); every other term's d is a difference, which summation by parts turns into the block
+// means weighted by the taper's steps (S_ybar near frequency 0 times sum (dh)^2).
+void ramp_estimate(const Model& mod, const Periodogram& p, const Eigen::VectorXd& c, double& r, double& sigma_r) {
+  const double nu_edge = 1.0 / static_cast<double>(p.edge), s_edge = std::sin(M_PI * nu_edge);
+  double var = 0.0;
+  for (size_t j = 0; j < mod.terms.size(); ++j) {
+    if (mod.terms[j] == ModelTerm::kK) {
+      var += c(j) * block_difference_density(ModelTerm::kK, 0.0, p.tau_b) * p.sum_h2;
+    } else {
+      const double s_ybar = block_difference_density(mod.terms[j], nu_edge, p.tau_b, mod.gm_t_s) / (4.0 * s_edge * s_edge);
+      var += c(j) * s_ybar * p.sum_dh2;
+    }
+  }
+  r = std::fabs(p.weighted_mean) / p.tau_b;
+  sigma_r = std::sqrt(std::max(0.0, var)) / p.sum_h / p.tau_b;
+}
+
 }  // namespace
 
 NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptions& opt, double block_s,
@@ -339,13 +364,45 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
     t.shape = mod.terms[j] == ModelTerm::kGaussMarkov ? mod.gm_t_s : 0.0;
     t.shape_sigma = 0.0;
     set_term_interval(t, sol.c(j), sigma_c[j], z);
-    const auto [lo, hi] = profile_interval(mod, p, sol, j, 0.5 * z * z, sigma_c[j]);
+    // The tapered likelihood is sharper than the information it holds by the taper's variance factor.
+    const auto [lo, hi] = profile_interval(mod, p, sol, j, 0.5 * z * z * p.taper_variance_factor, sigma_c[j]);
     t.lo = std::sqrt(lo);
     t.hi = std::sqrt(hi);
   }
   if (gm_index >= 0 && sol.c(gm_index) > 0) {
     const long last = static_cast<long>(active.size());
     out[ModelTerm::kGaussMarkov].shape_sigma = mod.gm_t_s * std::sqrt(std::max(0.0, cov_active(last, last)));
+  }
+  // The ramp from the same data: a constant in d, judged against the noise the fitted terms put
+  // into that constant (a random walk mostly), not against a curve that trades R for K.
+  if (opt.r) {
+    double r = 0.0, sigma_r = 0.0;
+    ramp_estimate(mod, p, sol.c, r, sigma_r);
+    TermEstimate& t = out[ModelTerm::kR];
+    t.in_model = true;
+    t.value = r;
+    t.sigma = sigma_r;
+    t.lo = std::max(0.0, r - z * sigma_r);
+    t.hi = r + z * sigma_r;
+    bool dominant = false;
+    for (int i = 0; i <= 60; ++i) {
+      const double tau = s.tau0_s * std::pow(0.25 * (static_cast<double>(s.x.size()) - 1), i / 60.0);
+      if (r * r * term_avar(ModelTerm::kR, tau) >= 0.5 * out.model_avar(tau)) dominant = true;
+    }
+    // The walk's own excursion over the record looks like a ramp, and its size is known only as
+    // well as K: the ramp counts as resolved when it stands out even at the largest K the data
+    // allow (the upper end of K's interval), at 3 sigma, since it is a signed estimate tested
+    // two-sided (2 sigma would call a ramp on one of six channels in every fourth run).
+    double sigma_r_worst = sigma_r;
+    const auto k_it = std::find(mod.terms.begin(), mod.terms.end(), ModelTerm::kK);
+    if (k_it != mod.terms.end()) {
+      Eigen::VectorXd c_worst = sol.c;
+      const double k_hi = out[ModelTerm::kK].hi;
+      c_worst(k_it - mod.terms.begin()) = std::max(sol.c(k_it - mod.terms.begin()), k_hi * k_hi);
+      double r_unused = 0.0;
+      ramp_estimate(mod, p, c_worst, r_unused, sigma_r_worst);
+    }
+    t.resolved = r > 3.0 * sigma_r_worst && dominant;
   }
   // Resolved: significant with every term free and dominant (>= half the Allan variance of the
   // whole model, curve-fit Q and R included) somewhere between tau0 and a quarter of the record.
