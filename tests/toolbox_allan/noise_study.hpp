@@ -8,6 +8,7 @@
 
 #include "tests/toolbox_allan/sensor_sim.hpp"
 #include "toolbox/allan/analysis.hpp"
+#include "toolbox/allan/whittle_fit.hpp"
 
 namespace ldv::allan::test {
 
@@ -40,6 +41,7 @@ inline SensorTruth gx2_gyro() {  // MEMS grade (3DM-GX2 like)
 struct StudyResult {
   int seeds = 0, n_ok = 0, b_ok = 0, k_ok = 0, n_cover = 0, b_cover = 0, k_cover = 0, absent_ok = 0;
   double k_err_sq = 0.0, b_err_sq = 0.0;  // sums of squared relative errors (RMS in the summary)
+  double crb_k = 0.0, crb_b = 0.0;        // Cramer-Rao bound (relative sd) of the likelihood fit
 };
 
 inline void tally(StudyResult& s, const NoiseFit& f, const SensorTruth& truth) {
@@ -88,6 +90,12 @@ inline StudyResult study(const SensorTruth& truth, double hours, double rate_hz,
                 f[ModelTerm::kR].resolved ? "resolved" : "absent");
   }
   print_summary("likelihood fit", s);
+  NoiseLevels levels;
+  levels.n = truth.n, levels.k = truth.k, levels.gm_sigma = truth.gm_sigma, levels.gm_t_s = truth.gm_t_s;
+  const RelativeBounds crb = whittle_cramer_rao(levels, dt, static_cast<long>(hours * kHour * rate_hz), 0.02);
+  s.crb_k = crb.k, s.crb_b = crb.gm_sigma;
+  std::printf("Cramer-Rao bound of the raw data: N %.2f%% B %.1f%% (T %.0f%%) K %.1f%%\n", 100 * crb.n, 100 * crb.gm_sigma,
+              100 * crb.gm_t, 100 * crb.k);
   if (curve.seeds) print_summary("Allan-curve fit", curve);
   return s;
 }

@@ -100,3 +100,31 @@ TEST(WhittleFit, CurveOnlyOptionAndTooShortRecordKeepTheCurveFit) {
   EXPECT_FALSE(r2.likelihood);
   EXPECT_FALSE(r2.curve_fit);
 }
+
+TEST(WhittleCramerRao, WhiteNoiseBoundIsTheClosedForm) {
+  // White noise only: the variance of n block means is known to sd sqrt(2/n) (relative), so N to
+  // sqrt(1/(2n)); the tapered likelihood pays its variance factor (1.12) on top.
+  NoiseLevels white;
+  white.n = 1e-3;
+  const long samples = 360000;
+  const double block_s = 0.02, tau0 = 0.01;
+  const long blocks = samples / 2;
+  const RelativeBounds b = whittle_cramer_rao(white, tau0, samples, block_s);
+  EXPECT_NEAR(b.n / std::sqrt(1.12 / (2.0 * blocks)), 1.0, 0.02);
+  EXPECT_EQ(b.k, 0.0);
+}
+
+TEST(WhittleCramerRao, MoreDataTightensEveryTermAsTheSquareRootOfTheDuration) {
+  // Beyond the transient of a term that barely shows, information grows with the number of
+  // ordinates: four times the record, half the sd (within 10 %).
+  NoiseLevels s;
+  s.n = 4.4e-5;
+  s.k = 8e-7;
+  s.gm_sigma = 2.4e-5;
+  s.gm_t_s = 50.0;
+  const RelativeBounds b10 = whittle_cramer_rao(s, 0.01, 10L * 3600 * 100, 0.02);
+  const RelativeBounds b40 = whittle_cramer_rao(s, 0.01, 40L * 3600 * 100, 0.02);
+  EXPECT_NEAR(b10.k / b40.k, 2.0, 0.2);
+  EXPECT_NEAR(b10.gm_sigma / b40.gm_sigma, 2.0, 0.2);
+  EXPECT_NEAR(b10.n / b40.n, 2.0, 0.05);
+}

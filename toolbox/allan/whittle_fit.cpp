@@ -40,15 +40,60 @@ long smooth_length(long n) {
   return n;
 }
 
+// The split cosine bell over 10 % of n at each end (see the taper comment below), its sums.
+struct Taper {
+  std::vector<double> h;
+  long edge = 1;
+  double sum_h = 0.0, sum_h2 = 0.0, sum_dh2 = 0.0, variance_factor = 1.0;
+};
+
+Taper split_cosine_bell(long n) {
+  Taper t;
+  t.edge = std::max(1L, n / 10);
+  t.h.resize(n);
+  double h4 = 0.0;
+  for (long j = 0; j < n; ++j) {
+    const long from_end = std::min(j, n - 1 - j);
+    const double h = from_end < t.edge ? 0.5 * (1.0 - std::cos(M_PI * (from_end + 0.5) / t.edge)) : 1.0;
+    t.h[j] = h;
+    t.sum_h += h, t.sum_h2 += h * h, h4 += h * h * h * h;
+    if (j > 0) t.sum_dh2 += (h - t.h[j - 1]) * (h - t.h[j - 1]);
+  }
+  t.variance_factor = n * h4 / (t.sum_h2 * t.sum_h2);
+  return t;
+}
+
+// Frequencies of a record of n blocks: ordinates one by one up to k = 200 (the slow terms live
+// there), then bins 1 % wide. `ordinate(k_lo, k_hi)`: the sum of the ordinates in [k_lo, k_hi).
+template <typename OrdinateSum>
+void bin_frequencies(long n, Periodogram& p, OrdinateSum ordinate) {
+  constexpr long kSingleUpTo = 200;
+  const long k_max = (n - 1) / 2;  // frequency 0 and Nyquist excluded
+  for (long k = 1; k <= k_max;) {
+    const long width = k <= kSingleUpTo ? 1 : std::max(1L, k / 100);
+    const long k_end = std::min(k_max + 1, k + width);
+    const double c = static_cast<double>(k_end - k);
+    p.nu.push_back(0.5 * static_cast<double>(k + k_end - 1) / n);  // the bin's mean frequency
+    p.mean_ordinate.push_back(ordinate(k, k_end) / c);
+    p.count.push_back(c);
+    p.ordinates += k_end - k;
+    k = k_end;
+  }
+}
+
+long blocks_of(const PhaseSeries& s, long m, double tau_b) {
+  const long blocks = (static_cast<long>(s.x.size()) - 1) / m;
+  if (blocks < 65) {
+    throw std::invalid_argument("likelihood fit: " + std::to_string(blocks) + " blocks of " + std::to_string(tau_b) +
+                                " s; at least 65 are needed");
+  }
+  return blocks;
+}
+
 Periodogram periodogram_of_block_differences(const PhaseSeries& s, long m) {
   Periodogram p;
   p.tau_b = m * s.tau0_s;
-  const long blocks = (static_cast<long>(s.x.size()) - 1) / m;
-  if (blocks < 65) {
-    throw std::invalid_argument("likelihood fit: " + std::to_string(blocks) + " blocks of " + std::to_string(p.tau_b) +
-                                " s; at least 65 are needed");
-  }
-  const long n = smooth_length(blocks - 1);
+  const long n = smooth_length(blocks_of(s, m, p.tau_b) - 1);
   p.blocks = n;
   // Taper: a split cosine bell over 10 % of the record at each end. Without it, d's sum telescopes
   // to its end values (ybar_n - ybar_0), which then sit in every ordinate as a flat floor of about
@@ -57,37 +102,30 @@ Periodogram periodogram_of_block_differences(const PhaseSeries& s, long m) {
   // The mean removed is the taper-weighted one: it takes out a rate ramp R (a constant R tau_b in
   // d) and, unlike the plain mean (ybar_n - ybar_0) / n, carries almost no noise of the end
   // values, so it does not leak that floor back in through the taper.
-  const long edge = std::max(1L, n / 10);
-  std::vector<double> d(n), h(n);
-  double sum_h = 0.0, sum_hd = 0.0, h2 = 0.0, h4 = 0.0;
+  const Taper taper = split_cosine_bell(n);
+  std::vector<double> d(n);
+  double sum_hd = 0.0;
   for (long j = 0; j < n; ++j) {
-    const long from_end = std::min(j, n - 1 - j);
-    h[j] = from_end < edge ? 0.5 * (1.0 - std::cos(M_PI * (from_end + 0.5) / edge)) : 1.0;
     // ybar_{j+1} - ybar_j from the phase: the second difference over a block, / tau_b.
     d[j] = (s.x[(j + 2) * m] - 2.0 * s.x[(j + 1) * m] + s.x[j * m]) / p.tau_b;
-    sum_h += h[j], sum_hd += h[j] * d[j], h2 += h[j] * h[j], h4 += std::pow(h[j], 4);
+    sum_hd += taper.h[j] * d[j];
   }
-  p.taper_variance_factor = n * h4 / (h2 * h2);
-  const double mean = sum_hd / sum_h;
-  p.weighted_mean = mean, p.sum_h = sum_h, p.sum_h2 = h2, p.edge = edge;
-  for (long j = 1; j < n; ++j) p.sum_dh2 += (h[j] - h[j - 1]) * (h[j] - h[j - 1]);
-  for (long j = 0; j < n; ++j) d[j] = (d[j] - mean) * h[j];
+  p.taper_variance_factor = taper.variance_factor;
+  p.weighted_mean = sum_hd / taper.sum_h;
+  p.sum_h = taper.sum_h, p.sum_h2 = taper.sum_h2, p.sum_dh2 = taper.sum_dh2, p.edge = taper.edge;
+  for (long j = 0; j < n; ++j) d[j] = (d[j] - p.weighted_mean) * taper.h[j];
   Eigen::FFT<double> fft;
   std::vector<std::complex<double>> spec;
   fft.fwd(spec, d);
-  constexpr long kSingleUpTo = 200;
-  const long k_max = (n - 1) / 2;  // frequency 0 and Nyquist excluded
-  for (long k = 1; k <= k_max;) {
-    const long width = k <= kSingleUpTo ? 1 : std::max(1L, k / 100);
-    const long k_end = std::min(k_max + 1, k + width);
-    double sum = 0.0, k_mean = 0.0;
-    for (long i = k; i < k_end; ++i) sum += std::norm(spec[i]) / h2, k_mean += static_cast<double>(i);
-    const double c = static_cast<double>(k_end - k);
-    p.nu.push_back(k_mean / c / n);
-    p.mean_ordinate.push_back(sum / c);
-    p.count.push_back(c);
-    p.ordinates += k_end - k;
-    k = k_end;
+  bin_frequencies(n, p, [&](long lo, long hi) {
+    double sum = 0.0;
+    for (long i = lo; i < hi; ++i) sum += std::norm(spec[i]) / taper.sum_h2;
+    return sum;
+  });
+  double total = 0.0;
+  for (double v : p.mean_ordinate) total += v;
+  if (!(total > 0.0) || !std::isfinite(total)) {
+    throw std::invalid_argument("likelihood fit: the block differences are constant or not finite");
   }
   return p;
 }
@@ -117,7 +155,7 @@ struct Solution {
 
 Eigen::VectorXd model_density(const Model& mod, const Eigen::VectorXd& c) {
   Eigen::VectorXd s = mod.fixed + mod.density * c;
-  const double floor = 1e-12 * s.maxCoeff();
+  const double floor = std::max(1e-12 * s.maxCoeff(), std::numeric_limits<double>::min());
   return s.cwiseMax(floor);
 }
 
@@ -335,6 +373,9 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
     start(j) = std::max(v * v, 1e-4 * reach);
   }
   const Solution sol = maximise(mod, p, start, gm_index);
+  if (!sol.c.allFinite() || !std::isfinite(sol.log_likelihood)) {
+    throw std::invalid_argument("likelihood fit: no finite maximum (the curve fit is kept)");
+  }
 
   NoiseFit out = curve;
   out.method = "whittle";
@@ -416,12 +457,64 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
     }
     t.resolved = sol.c(j) > 2.0 * std::max(sigma_c[j], sigma_free[j]) && dominant;
   }
+  for (ModelTerm term : mod.terms) {
+    const TermEstimate& t = out[term];
+    if (!std::isfinite(t.value + t.sigma + t.lo + t.hi + t.shape + t.shape_sigma)) {
+      throw std::invalid_argument(std::string("likelihood fit: ") + model_term_name(term) + " not finite (the curve fit is kept)");
+    }
+  }
   if (summary) {
     summary->block_s = p.tau_b;
     summary->ordinates = p.ordinates;
     summary->log_likelihood = sol.log_likelihood;
     summary->iterations = sol.iterations;
   }
+  return out;
+}
+
+RelativeBounds whittle_cramer_rao(const NoiseLevels& truth, double tau0_s, long samples, double block_s) {
+  const long m = std::max(1L, std::lround(block_s / tau0_s));
+  Periodogram p;
+  p.tau_b = m * tau0_s;
+  const long blocks = samples / m;
+  if (blocks < 65) throw std::invalid_argument("Cramer-Rao bound: fewer than 65 blocks");
+  const long n = smooth_length(blocks - 1);
+  p.blocks = n;
+  p.taper_variance_factor = split_cosine_bell(n).variance_factor;
+  bin_frequencies(n, p, [](long, long) { return 0.0; });
+  Model mod;
+  std::vector<double> c;
+  int gm_index = -1;
+  auto add = [&](ModelTerm t, double level) {
+    if (level <= 0) return;
+    if (t == ModelTerm::kGaussMarkov) gm_index = static_cast<int>(mod.terms.size());
+    mod.terms.push_back(t);
+    c.push_back(level * level);
+  };
+  add(ModelTerm::kN, truth.n);
+  add(ModelTerm::kB, truth.b);
+  add(ModelTerm::kK, truth.k);
+  add(ModelTerm::kGaussMarkov, truth.gm_sigma);
+  mod.gm_t_s = truth.gm_t_s;
+  mod.fixed.resize(static_cast<long>(p.nu.size()));
+  for (size_t b = 0; b < p.nu.size(); ++b) mod.fixed(b) = truth.q * truth.q * block_difference_density(ModelTerm::kQ, p.nu[b], p.tau_b);
+  set_densities(mod, p);
+  const Eigen::VectorXd cv = Eigen::Map<const Eigen::VectorXd>(c.data(), c.size());
+  std::vector<int> all(c.size());
+  for (size_t j = 0; j < c.size(); ++j) all[j] = static_cast<int>(j);
+  const Eigen::MatrixXd cov = fisher_covariance(mod, p, cv, all, gm_index);
+  RelativeBounds out;
+  for (size_t j = 0; j < c.size(); ++j) {
+    const double rel = 0.5 * std::sqrt(std::max(0.0, cov(j, j))) / c[j];  // sd(sqrt c)/sqrt c
+    switch (mod.terms[j]) {
+      case ModelTerm::kN: out.n = rel; break;
+      case ModelTerm::kB: out.b = rel; break;
+      case ModelTerm::kK: out.k = rel; break;
+      case ModelTerm::kGaussMarkov: out.gm_sigma = rel; break;
+      default: break;
+    }
+  }
+  if (gm_index >= 0) out.gm_t = std::sqrt(std::max(0.0, cov(c.size(), c.size())));
   return out;
 }
 

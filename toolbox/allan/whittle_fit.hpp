@@ -13,6 +13,7 @@
 // fit's value (it lives at the shortest tau, where the curve is already efficient); R, a ramp, is
 // a constant in the differences (frequency 0, not used) and stays the curve fit's. Not with a
 // sinusoid in the model (a spectral line, not a density).
+#include "toolbox/allan/avar_covariance.hpp"
 #include "toolbox/allan/noise_fit.hpp"
 #include "toolbox/allan/phase_series.hpp"
 
@@ -31,5 +32,14 @@ struct WhittleSummary {
 // series gives fewer than 64 blocks or the model has a sinusoid.
 NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptions& opt, double block_s,
                      WhittleSummary* summary = nullptr);
+
+// Cramer-Rao bound of the likelihood fit: the expected 1-sigma of each term a sensor with these
+// noise levels has, relative to its value, from `samples` samples at tau0 (the expected Fisher
+// information of the tapered Whittle likelihood, the information the raw record holds). Terms at 0
+// are not in the model and get 0; Q is held, R is not a density (0). `gm_t` is the relative sd of T.
+struct RelativeBounds {
+  double n = 0.0, b = 0.0, k = 0.0, gm_sigma = 0.0, gm_t = 0.0;
+};
+RelativeBounds whittle_cramer_rao(const NoiseLevels& truth, double tau0_s, long samples, double block_s);
 
 }  // namespace ldv::allan
