@@ -128,3 +128,23 @@ TEST(WhittleCramerRao, MoreDataTightensEveryTermAsTheSquareRootOfTheDuration) {
   EXPECT_NEAR(b10.gm_sigma / b40.gm_sigma, 2.0, 0.2);
   EXPECT_NEAR(b10.n / b40.n, 2.0, 0.05);
 }
+
+TEST(WhittleCramerRao, RecordNeededFollowsTheSquareRootLaw) {
+  // A fit of 1 h of white noise + random walk (K dominant from 20 s on): the record at which K
+  // reaches 5 % is the present one times (sd now / 5 %)^2, within 15 % (the asymptotic law).
+  SensorTruth t;
+  t.n = 1e-3;
+  t.k = 1e-4;
+  const ChannelResult r = analyse(t, 0.01, 360000, 31);
+  ASSERT_TRUE(r.information);
+  const RecordInformation& info = *r.information;
+  ASSERT_GT(info.now.k, 0.05);
+  const double expected_h = 1.0 * std::pow(info.now.k / 0.05, 2);
+  AnalysisOptions opt;
+  opt.fit_options.target_precision = 0.05;
+  auto y = simulate_rate(t, 0.01, 360000, 31);
+  const ChannelResult r5 = analyze({phase_from_rates(std::move(y), 0.01, "x", "rad/s")}, opt).front();
+  ASSERT_TRUE(r5.information);
+  EXPECT_NEAR(r5.information->hours_k / expected_h, 1.0, 0.15);
+  EXPECT_EQ(r5.information->hours_b, 0.0);  // B not resolved: no record length claimed
+}

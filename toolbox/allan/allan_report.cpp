@@ -99,6 +99,24 @@ void print_tables(std::FILE* out, const std::vector<ChannelResult>& results) {
       std::fprintf(out, "  sine amplitude %.5g %s at %.5g Hz (%s)\n", sine.value, r.unit.c_str(), sine.shape,
                    sine.resolved ? "resolved" : "not resolved");
     }
+    if (r.information) {
+      const RecordInformation& info = *r.information;
+      const bool gm = f[ModelTerm::kGaussMarkov].in_model;
+      const double b_now = gm ? info.now.gm_sigma : info.now.b;
+      auto hours = [](double h) {
+        char buf[32];
+        if (h == 0.0) return std::string("-");
+        if (!std::isfinite(h)) return std::string("> 1000 h");
+        if (h < 1.0 / 60.0) std::snprintf(buf, sizeof buf, "%.2g s", h * 3600.0);
+        else if (h < 1.0) std::snprintf(buf, sizeof buf, "%.2g min", h * 60.0);
+        else std::snprintf(buf, sizeof buf, "%.3g h", h);
+        return std::string(buf);
+      };
+      std::fprintf(out, "  information in this record (%.3g h; Cramer-Rao, fit taken as truth): sd N %.2g %%, B %.2g %%, K %.2g %%\n",
+                   r.samples * r.tau0_s / 3600.0, 100 * info.now.n, 100 * b_now, 100 * info.now.k);
+      std::fprintf(out, "  record needed for %.3g %% (1 sigma) on each resolved term (- not resolved): N %s, B %s, K %s\n", 100 * info.target,
+                   hours(info.hours_n).c_str(), hours(info.hours_b).c_str(), hours(info.hours_k).c_str());
+    }
     std::fprintf(out, "  misfit per decade (chi2/point ~ 1 when the model fits):\n");
     for (const DecadeMisfit& m : f.misfit) {
       std::fprintf(out, "    tau %8.3g..%-8.3g s: %3d points, chi2/point %8.3g, data/model %6.3f", m.tau_lo_s, m.tau_hi_s,
@@ -176,6 +194,14 @@ void write_json(const std::string& path, const std::string& input, const std::ve
           << r.likelihood->ordinates << ", \"log_likelihood\": " << num(r.likelihood->log_likelihood);
       }
       o << "}";
+      if (r.information) {
+        const RecordInformation& info = *r.information;
+        const double b_now = gm ? info.now.gm_sigma : info.now.b;
+        o << ",\n      \"record_information\": {\"target_relative_sd\": " << num(info.target)
+          << ", \"relative_sd\": {\"N\": " << num(info.now.n) << ", \"B\": " << num(b_now) << ", \"K\": " << num(info.now.k)
+          << "}, \"hours_for_target\": {\"N\": " << num(info.hours_n) << ", \"B\": " << num(info.hours_b)
+          << ", \"K\": " << num(info.hours_k) << "}}";
+      }
       if (r.curve_fit) {  // the Allan-curve fit the likelihood started from: the second opinion
         const NoiseFit& cf = *r.curve_fit;
         o << ",\n      \"allan_curve_fit\": {\"method\": " << quoted(cf.method);

@@ -69,6 +69,7 @@ ChannelResult analyze_channel(const PhaseSeries& s, const AnalysisOptions& opt) 
         r.curve_fit = std::move(r.fit);
         r.fit = std::move(refined);
         r.likelihood = summary;
+        r.information = record_information(*r.fit, s.tau0_s, r.samples, fo.likelihood_block_s, fo.target_precision);
       } catch (const std::invalid_argument& e) {
         r.likelihood_error = e.what();
       }

@@ -41,6 +41,7 @@ struct ChannelResult {
   // (a second opinion), `likelihood` its summary. `likelihood_error`: why it was not applied.
   std::optional<NoiseFit> curve_fit;
   std::optional<WhittleSummary> likelihood;
+  std::optional<RecordInformation> information;  // with the likelihood fit: bounds, record needed
   std::string likelihood_error;
 };
 

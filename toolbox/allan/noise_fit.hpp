@@ -29,6 +29,7 @@ struct FitOptions {
   // false: the Allan-curve fit only.
   bool likelihood = true;
   double likelihood_block_s = 0.02;  // the rate is averaged over blocks of this length first (>= tau0)
+  double target_precision = 0.1;     // record length reported for this relative 1-sigma per term
 };
 
 struct TermEstimate {

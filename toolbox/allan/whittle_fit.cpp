@@ -480,7 +480,8 @@ RelativeBounds whittle_cramer_rao(const NoiseLevels& truth, double tau0_s, long 
   if (blocks < 65) throw std::invalid_argument("Cramer-Rao bound: fewer than 65 blocks");
   const long n = smooth_length(blocks - 1);
   p.blocks = n;
-  p.taper_variance_factor = split_cosine_bell(n).variance_factor;
+  // The taper's variance factor depends on its shape only (1.12 beyond a few hundred blocks).
+  p.taper_variance_factor = split_cosine_bell(std::min(n, 100000L)).variance_factor;
   bin_frequencies(n, p, [](long, long) { return 0.0; });
   Model mod;
   std::vector<double> c;
@@ -516,6 +517,53 @@ RelativeBounds whittle_cramer_rao(const NoiseLevels& truth, double tau0_s, long 
   }
   if (gm_index >= 0) out.gm_t = std::sqrt(std::max(0.0, cov(c.size(), c.size())));
   return out;
+}
+
+namespace {
+
+double bound_of(const RelativeBounds& b, ModelTerm t) {
+  switch (t) {
+    case ModelTerm::kN: return b.n;
+    case ModelTerm::kB: return b.b;
+    case ModelTerm::kK: return b.k;
+    case ModelTerm::kGaussMarkov: return b.gm_sigma;
+    default: return 0.0;
+  }
+}
+
+}  // namespace
+
+RecordInformation record_information(const NoiseFit& fit, double tau0_s, long samples, double block_s, double target) {
+  RecordInformation info;
+  info.target = target;
+  NoiseLevels lv;
+  auto level = [&](ModelTerm t) { return fit[t].in_model ? fit[t].value : 0.0; };
+  lv.q = level(ModelTerm::kQ), lv.n = level(ModelTerm::kN), lv.b = level(ModelTerm::kB), lv.k = level(ModelTerm::kK);
+  lv.gm_sigma = level(ModelTerm::kGaussMarkov), lv.gm_t_s = fit[ModelTerm::kGaussMarkov].shape;
+  if (lv.gm_sigma > 0 && !(lv.gm_t_s > 0)) lv.gm_sigma = 0.0;
+  info.now = whittle_cramer_rao(lv, tau0_s, samples, block_s);
+  const double block = std::max(1L, std::lround(block_s / tau0_s)) * tau0_s;
+  // The bound falls with the record (as 1/sqrt(length) once every term has shown itself):
+  // bisection in ln(length) between 100 blocks and 1000 h.
+  for (ModelTerm t : {ModelTerm::kN, ModelTerm::kB, ModelTerm::kK, ModelTerm::kGaussMarkov}) {
+    double& hours = t == ModelTerm::kN ? info.hours_n : t == ModelTerm::kK ? info.hours_k : info.hours_b;
+    if (!fit[t].in_model || !fit[t].resolved || !(bound_of(info.now, t) > 0)) continue;
+    auto sd_at = [&](double seconds) {
+      return bound_of(whittle_cramer_rao(lv, tau0_s, static_cast<long>(seconds / tau0_s), block_s), t);
+    };
+    double lo = 100.0 * block, hi = 1000.0 * 3600.0;
+    if (sd_at(hi) > target) {
+      hours = std::numeric_limits<double>::infinity();
+      continue;
+    }
+    if (sd_at(lo) <= target) hi = lo;
+    for (int it = 0; it < 30 && hi / lo > 1.01; ++it) {
+      const double mid = std::sqrt(lo * hi);
+      (sd_at(mid) <= target ? hi : lo) = mid;
+    }
+    hours = hi / 3600.0;
+  }
+  return info;
 }
 
 }  // namespace ldv::allan

@@ -42,4 +42,14 @@ struct RelativeBounds {
 };
 RelativeBounds whittle_cramer_rao(const NoiseLevels& truth, double tau0_s, long samples, double block_s);
 
+// What a record of this sensor tells about its terms, taking the fit as the truth: the bound now
+// and the record length [h] at which each resolved term reaches `target` (relative 1-sigma);
+// 0: not resolved here, infinity: beyond 1000 h.
+struct RecordInformation {
+  RelativeBounds now;
+  double target = 0.1;
+  double hours_n = 0.0, hours_b = 0.0, hours_k = 0.0;  // hours_b: B or the GM sigma
+};
+RecordInformation record_information(const NoiseFit& fit, double tau0_s, long samples, double block_s, double target);
+
 }  // namespace ldv::allan

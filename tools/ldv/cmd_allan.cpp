@@ -23,7 +23,7 @@ struct AllanArgs {
   double rate = 0, tau0 = 0, nominal = 0, max_tau = 0, confidence = ldv::allan::kOneSigmaConfidence;
   int per_decade = 10, threads = 0;
   bool gauss_markov = false, sinusoid = false, no_fit = false, curve_only = false;
-  double likelihood_block_s = 0.02;
+  double likelihood_block_s = 0.02, target_precision = 0.1;
 };
 
 std::string guess_format(const std::string& path) {
@@ -72,6 +72,7 @@ void run_allan(const AllanArgs& a) {
   f.sinusoid = a.sinusoid;
   f.likelihood = !a.curve_only;
   f.likelihood_block_s = a.likelihood_block_s;
+  f.target_precision = a.target_precision;
   for (const auto& c : channels) {
     spdlog::info("allan: {} [{}]: {} samples, tau0 {} s", c.name, c.unit, c.x.size() - 1, c.tau0_s);
   }
@@ -148,6 +149,9 @@ void add_allan_command(CLI::App& app) {
   cmd->add_option("--likelihood-block", args->likelihood_block_s,
                   "the likelihood fit averages the rate over blocks of this length first [s]")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--target-precision", args->target_precision,
+                  "report the record length at which each resolved term reaches this relative 1-sigma (default 0.1)")
+      ->check(CLI::Range(1e-4, 1.0));
   cmd->add_option("--threads", args->threads, "worker threads (default: one per core)");
   cmd->callback([args] { run_allan(*args); });
 }
