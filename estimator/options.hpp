@@ -40,7 +40,9 @@ struct ZuptOptions {
   // drags the position through its correlation with the velocity.
   double f_horizontal_max_mps2 = 0.15;
   double period_s = 0.2;           // apply at most this often
-  double std_mps = 0.01;           // measurement noise of the zero velocity
+  // Measurement noise of the zero velocity: the detector cannot tell creeping below about 2 cm/s
+  // from rest (a smooth start stays under f_horizontal_max for that long).
+  double std_mps = 0.02;
 };
 
 struct FilterOptions {

@@ -17,6 +17,12 @@ namespace {
 constexpr double kSnapshotPeriod_s = 0.2;
 constexpr double kHealthPeriod_s = 1.0;
 constexpr double kSplitTolerance_s = 1e-6;
+// A continuing ZUPT whose innovation exceeds the 95 % chi-square point (3 dof) is taken as motion:
+// skipping one at a real stop costs nothing (the next comes a period later), applying one while the
+// vehicle creeps off costs meters.
+constexpr double kZuptMovingNis = 7.81;
+// How far the speed gate of a ZUPT may open with the filter's velocity uncertainty [m/s].
+constexpr double kZuptSpeedAllowance_mps = 0.7;
 
 ImuIncrement scaled(const ImuIncrement& in, double fraction) {
   ImuIncrement out = in;
@@ -63,7 +69,8 @@ void NavFilter::initialize(const NavState& s, const NavStd& std) {
   }
   c_.P = var.asDiagonal();
   c_.acc_B = Eigen::Matrix<double, 9, Eigen::Dynamic>::Zero(9, m_);
-  c_.detector = StaticDetector(opt_.zupt.window_s, opt_.zupt.f_std_mps2, opt_.zupt.omega_max_rad_s);
+  c_.detector = StaticDetector(opt_.zupt.window_s, opt_.zupt.f_std_mps2, opt_.zupt.omega_max_rad_s,
+                               opt_.vrw_mps_per_sqrt_s.maxCoeff(), opt_.arw_rad_per_sqrt_s.maxCoeff());
   c_.mech.reset(s);
   c_.initialized = true;
   c_.status = kStatusInitialized;
@@ -156,11 +163,29 @@ void NavFilter::process_imu(const ImuIncrement& raw) {
   // ZUPT only without recent GNSS: with RTK it adds nothing, and the detector cannot tell a smooth
   // start from rest (|f| ~ g) from standing still; the gate catches the rest.
   const bool gnss_recent = c_.nav.t_s - c_.last_gnss_t_s < 1.0;
-  if (opt_.zupt.enabled && stat && !gnss_recent && c_.nav.v_n_mps.norm() < opt_.zupt.speed_max_mps &&
+  // The filter's own speed must be small, allowing for its uncertainty (a MEMS IMU seconds into an
+  // outage is already off by tenths of m/s at a real stop), but never beyond speed_max + 0.7 m/s:
+  // a smooth crawl looks static to the detector, and a ZUPT there would zero a real speed.
+  const double sigma_v_h = std::sqrt(std::max(0.0, c_.P(kVel, kVel) + c_.P(kVel + 1, kVel + 1)));
+  const double speed_gate = opt_.zupt.speed_max_mps + std::min(3.0 * sigma_v_h, kZuptSpeedAllowance_mps);
+  if (opt_.zupt.enabled && stat && !gnss_recent && c_.nav.v_n_mps.norm() < speed_gate &&
       c_.f_n_smooth_mps2.head<2>().norm() < opt_.zupt.f_horizontal_max_mps2 &&
       c_.nav.t_s - c_.last_zupt_t_s >= opt_.zupt.period_s) {
     flush_covariance();
-    apply_measurement(zero_velocity_measurement(c_.nav, layout_, opt_.zupt.std_mps));
+    const Measurement zupt = zero_velocity_measurement(c_.nav, layout_, opt_.zupt.std_mps);
+    // A ZUPT that continues a stop must agree with the velocity the previous ones left: the detector
+    // cannot see a smooth start (|f| ~ g, a small horizontal force at first), and zeroing the 2-3
+    // cm/s the vehicle then already has, with a 1 cm/s std, corrupts the velocity and tilt for the
+    // rest of an outage (meters after a minute). The first ZUPT of a stop goes to the usual gate.
+    const bool continuing = c_.nav.t_s - c_.last_zupt_t_s < 2.0 * opt_.zupt.period_s;
+    const Mat3 s_zupt = c_.P.block<3, 3>(kVel, kVel) + zupt.R;
+    const double nis = zupt.y.dot(s_zupt.ldlt().solve(zupt.y));
+    if (!continuing || nis <= kZuptMovingNis) {
+      apply_measurement(zupt);
+      ++faults_.zupts_applied;
+    } else {
+      ++faults_.zupts_skipped_moving;
+    }
     c_.last_zupt_t_s = c_.nav.t_s;
   }
   if (c_.nav.t_s - c_.last_gnss_t_s > 2.0)

@@ -17,9 +17,9 @@ Measurement zero_velocity_measurement(const NavState& s, const StateLayout& layo
 bool StaticDetector::add(double dt_s, const Vec3& omega_ib_b, const Vec3& f_b) {
   if (ring_.empty()) {
     const size_t n = std::max<size_t>(2, static_cast<size_t>(std::lround(window_s_ / dt_s)));
-    ring_.assign(n, {0.0, 0.0});
+    ring_.assign(n, Sample{});
   }
-  const Sample in{f_b.norm(), omega_ib_b.norm()};
+  const Sample in{f_b.norm(), omega_ib_b};
   if (count_ == ring_.size()) {
     const Sample& out = ring_[head_];
     sum_f_ -= out.f;
@@ -33,11 +33,12 @@ bool StaticDetector::add(double dt_s, const Vec3& omega_ib_b, const Vec3& f_b) {
   sum_f_ += in.f;
   sum_f2_ += in.f * in.f;
   sum_w_ += in.w;
-  if (count_ < ring_.size()) return static_ = false;
+  if (count_ < ring_.size() || !(dt_s > 0.0)) return static_ = false;
   const double n = static_cast<double>(count_);
   const double mean_f = sum_f_ / n;
   const double var_f = std::max(0.0, sum_f2_ / n - mean_f * mean_f);
-  static_ = std::sqrt(var_f) < f_std_ && sum_w_ / n < w_max_;
+  const double sigma_f = vrw_ / std::sqrt(dt_s), sigma_w = arw_ / std::sqrt(dt_s);
+  static_ = std::sqrt(var_f) < f_std_ + 2.0 * sigma_f && (sum_w_ / n).norm() < w_max_ + 4.0 * sigma_w / std::sqrt(n);
   return static_;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // Zero-velocity update: when the static detector fires, the IMU velocity is zero (z = 0, y = v_hat).
-// StaticDetector: over a sliding window, the std of |f| and the mean of |w| are both small.
+// StaticDetector: over a sliding window, the std of |f| and the norm of the mean angular rate are
+// both small, against thresholds that include the sensor's own white noise.
 #include <vector>
 
 #include "estimator/ins/nav_state.hpp"
@@ -12,20 +13,28 @@ Measurement zero_velocity_measurement(const NavState& s, const StateLayout& layo
 
 class StaticDetector {
  public:
-  StaticDetector(double window_s, double f_std_mps2, double omega_max_rad_s)
-      : window_s_(window_s), f_std_(f_std_mps2), w_max_(omega_max_rad_s) {}
+  // Static when std(|f|) < f_std + 2 sigma_f and |mean w| < omega_max + 4 sigma_w / sqrt(n) (the
+  // 99.9 % point of the norm of a 3-D mean of n noisy samples), sigma = white-noise density /
+  // sqrt(dt) per sample. A MEMS gyro at rest reads about a degree per second in every sample; the
+  // mean over the window (not the mean of the norms) and the noise term let it stop too.
+  StaticDetector(double window_s, double f_std_mps2, double omega_max_rad_s, double vrw_mps_per_sqrt_s = 0.0,
+                 double arw_rad_per_sqrt_s = 0.0)
+      : window_s_(window_s), f_std_(f_std_mps2), w_max_(omega_max_rad_s), vrw_(vrw_mps_per_sqrt_s),
+        arw_(arw_rad_per_sqrt_s) {}
   // One compensated sample (mean rate and specific force over dt); returns whether static now.
   bool add(double dt_s, const Vec3& omega_ib_b, const Vec3& f_b);
   bool is_static() const { return static_; }
 
  private:
   struct Sample {
-    double f, w;
+    double f = 0.0;
+    Vec3 w = Vec3::Zero();
   };
-  double window_s_, f_std_, w_max_;
+  double window_s_, f_std_, w_max_, vrw_, arw_;
   std::vector<Sample> ring_;
   size_t head_ = 0, count_ = 0;
-  double sum_f_ = 0, sum_f2_ = 0, sum_w_ = 0;
+  double sum_f_ = 0, sum_f2_ = 0;
+  Vec3 sum_w_ = Vec3::Zero();
   bool static_ = false;
 };
 

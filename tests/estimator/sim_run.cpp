@@ -30,9 +30,12 @@ Accuracy evaluate(const sim::SimResult& sim, FilterOptions options, double settl
     if (k >= sim.truth.size() || std::abs(sim.truth[k].t_s - t) > 1e-6) return;
     const auto e = nav_error(f.state(), sim.truth[k]);
     const double run_t = t - t0;
-    for (const auto& o : outages)  // the largest horizontal error while GNSS is out
-      if (run_t >= o.start_s && run_t < o.start_s + o.length_s)
-        acc.outage_drift_m = std::max(acc.outage_drift_m, e.head<2>().norm());
+    for (const auto& o : outages) {  // the largest horizontal error while GNSS is out
+      if (run_t >= o.start_s && run_t < o.start_s + o.length_s && e.head<2>().norm() > acc.outage_drift_m) {
+        acc.outage_drift_m = e.head<2>().norm();
+        acc.outage_drift_sigma_m = std::sqrt(std::max(0.0, f.covariance().block<2, 2>(0, 0).trace()));
+      }
+    }
     if (run_t < settle_s || std::floor(run_t) == last_whole_s) return;  // 1 Hz statistics
     last_whole_s = std::floor(run_t);
     bool in_outage = false;

@@ -12,6 +12,7 @@ namespace ldv::est::test {
 struct Accuracy {
   double horiz_rms_m = 0, vert_rms_m = 0, vel_rms_mps = 0, roll_pitch_rms_deg = 0, yaw_rms_deg = 0;
   double outage_drift_m = 0;     // largest horizontal error during the outages
+  double outage_drift_sigma_m = 0;  // the filter's horizontal 1-sigma at that moment
   double nees_pos = 0, nees_vel = 0, nees_att = 0;  // averages, 3 dof each (1 Hz samples, aided only)
   long samples = 0, gate_rejections = 0;
 };
