@@ -3,10 +3,9 @@
 // (IEEE Std 952), and the mean periodogram of simulated data follows them.
 #include <gtest/gtest.h>
 
-#include <unsupported/Eigen/FFT>
-
 #include <cmath>
 #include <complex>
+#include <unsupported/Eigen/FFT>
 #include <vector>
 
 #include "tests/toolbox_allan/sensor_sim.hpp"
@@ -33,7 +32,8 @@ TEST(BlockSpectrum, IntegralIsTwiceTheAllanVarianceOfEachTerm) {
           << model_term_name(t) << " at tau_b " << tau_b;
     }
     for (double gm_t : {0.01, 1.0, 50.0, 5000.0}) {
-      EXPECT_NEAR(integral_over_band(ModelTerm::kGaussMarkov, tau_b, gm_t) / (2.0 * term_avar(ModelTerm::kGaussMarkov, tau_b, gm_t)),
+      EXPECT_NEAR(integral_over_band(ModelTerm::kGaussMarkov, tau_b, gm_t) /
+                      (2.0 * term_avar(ModelTerm::kGaussMarkov, tau_b, gm_t)),
                   1.0, 1e-5)
           << "GM T " << gm_t << " at tau_b " << tau_b;
     }
@@ -55,7 +55,8 @@ TEST(BlockSpectrum, SimulatedPeriodogramFollowsTheDensity) {
   for (int rec = 0; rec < records; ++rec) {
     const auto y = test::simulate_rate(truth, dt, static_cast<long>(blocks) * m, 77u + rec);
     std::vector<double> ybar(blocks, 0.0), d(blocks - 1);
-    for (int j = 0; j < blocks; ++j) for (int i = 0; i < m; ++i) ybar[j] += y[j * m + i] / m;
+    for (int j = 0; j < blocks; ++j)
+      for (int i = 0; i < m; ++i) ybar[j] += y[j * m + i] / m;
     for (int j = 0; j + 1 < blocks; ++j) d[j] = ybar[j + 1] - ybar[j];
     std::vector<std::complex<double>> spec;
     fft.fwd(spec, d);
@@ -64,9 +65,10 @@ TEST(BlockSpectrum, SimulatedPeriodogramFollowsTheDensity) {
       const int band = std::min(7, static_cast<int>(16.0 * k / n));
       band_data[band] += std::norm(spec[k]) / n;
       const double nu = static_cast<double>(k) / n;
-      band_model[band] += truth.n * truth.n * block_difference_density(ModelTerm::kN, nu, tau_b) +
-                          truth.k * truth.k * block_difference_density(ModelTerm::kK, nu, tau_b) +
-                          truth.gm_sigma * truth.gm_sigma * block_difference_density(ModelTerm::kGaussMarkov, nu, tau_b, truth.gm_t_s);
+      band_model[band] +=
+          truth.n * truth.n * block_difference_density(ModelTerm::kN, nu, tau_b) +
+          truth.k * truth.k * block_difference_density(ModelTerm::kK, nu, tau_b) +
+          truth.gm_sigma * truth.gm_sigma * block_difference_density(ModelTerm::kGaussMarkov, nu, tau_b, truth.gm_t_s);
     }
   }
   for (int b = 0; b < 8; ++b) EXPECT_NEAR(band_data[b] / band_model[b], 1.0, 0.04) << "band " << b;

@@ -41,8 +41,8 @@ TEST(WhittleFit, WhiteNoiseGivesNoRandomWalk) {
 
 TEST(WhittleFit, RampIsNotReadAsRandomWalk) {
   // White noise, a rate random walk and a strong ramp (over the hour it drifts 10x the walk's
-  // one-sigma excursion, about 9 sigma of its estimate): the ramp is a constant in the block differences and must not inflate K; it is
-  // estimated from that constant against the noise the walk puts there.
+  // one-sigma excursion, about 9 sigma of its estimate): the ramp is a constant in the block differences and must not
+  // inflate K; it is estimated from that constant against the noise the walk puts there.
   SensorTruth t;
   t.n = 1e-3;
   t.k = 2e-5;

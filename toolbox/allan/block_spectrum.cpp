@@ -14,7 +14,8 @@ double alias_sum_cubed(double nu) {
     double s = 0.0;
     for (int k = 0; k < kDirect; ++k) s += std::pow(k + a, -3.0);
     const double x = kDirect + a;
-    return s + 1.0 / (2.0 * x * x) + 1.0 / (2.0 * x * x * x) + 1.0 / (4.0 * std::pow(x, 4)) - 1.0 / (12.0 * std::pow(x, 6));
+    return s + 1.0 / (2.0 * x * x) + 1.0 / (2.0 * x * x * x) + 1.0 / (4.0 * std::pow(x, 4)) -
+           1.0 / (12.0 * std::pow(x, 6));
   };
   return side(nu) + side(1.0 - nu);
 }
@@ -36,13 +37,19 @@ double gauss_markov_block_mean_density(double nu, double tau_b_s, double t_s) {
 double block_difference_density(ModelTerm t, double nu, double tau_b_s, double shape) {
   const double s = std::sin(M_PI * nu), s2 = s * s;
   switch (t) {
-    case ModelTerm::kQ: return 16.0 * s2 * s2 / (tau_b_s * tau_b_s);
-    case ModelTerm::kN: return 4.0 * s2 / tau_b_s;
-    case ModelTerm::kB: return 2.0 * s2 * s2 / (M_PI * M_PI * M_PI) * alias_sum_cubed(nu);
-    case ModelTerm::kK: return tau_b_s / 3.0 * (2.0 + std::cos(2.0 * M_PI * nu));
-    case ModelTerm::kGaussMarkov: return 4.0 * s2 * gauss_markov_block_mean_density(nu, tau_b_s, shape);
+    case ModelTerm::kQ:
+      return 16.0 * s2 * s2 / (tau_b_s * tau_b_s);
+    case ModelTerm::kN:
+      return 4.0 * s2 / tau_b_s;
+    case ModelTerm::kB:
+      return 2.0 * s2 * s2 / (M_PI * M_PI * M_PI) * alias_sum_cubed(nu);
+    case ModelTerm::kK:
+      return tau_b_s / 3.0 * (2.0 + std::cos(2.0 * M_PI * nu));
+    case ModelTerm::kGaussMarkov:
+      return 4.0 * s2 * gauss_markov_block_mean_density(nu, tau_b_s, shape);
     case ModelTerm::kR:
-    case ModelTerm::kSinusoid: return 0.0;
+    case ModelTerm::kSinusoid:
+      return 0.0;
   }
   return 0.0;
 }

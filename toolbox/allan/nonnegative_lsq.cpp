@@ -10,7 +10,8 @@ namespace {
 bool solve_subset(const Eigen::MatrixXd& A, const Eigen::VectorXd& y, unsigned active, Eigen::VectorXd& c) {
   const int p = static_cast<int>(A.cols());
   std::vector<int> idx;
-  for (int k = 0; k < p; ++k) if (active & (1u << k)) idx.push_back(k);
+  for (int k = 0; k < p; ++k)
+    if (active & (1u << k)) idx.push_back(k);
   c = Eigen::VectorXd::Zero(p);
   if (idx.empty()) return true;
   Eigen::MatrixXd As(A.rows(), idx.size());

@@ -1,13 +1,12 @@
 #include "toolbox/allan/whittle_fit.hpp"
 
-#include <unsupported/Eigen/FFT>
-
 #include <algorithm>
 #include <cmath>
 #include <complex>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <unsupported/Eigen/FFT>
 #include <vector>
 
 #include "toolbox/allan/block_spectrum.hpp"
@@ -34,7 +33,8 @@ struct Periodogram {
 long smooth_length(long n) {
   for (long l = n; l > 1; --l) {
     long r = l;
-    for (long p : {2L, 3L, 5L}) while (r % p == 0) r /= p;
+    for (long p : {2L, 3L, 5L})
+      while (r % p == 0) r /= p;
     if (r == 1) return l;
   }
   return n;
@@ -133,8 +133,8 @@ Periodogram periodogram_of_block_differences(const PhaseSeries& s, long m) {
 struct Model {
   std::vector<ModelTerm> terms;  // estimated
   double gm_t_s = 0.0;
-  Eigen::MatrixXd density;       // bins x terms, unit coefficients
-  Eigen::VectorXd fixed;         // density of the held terms (Q)
+  Eigen::MatrixXd density;  // bins x terms, unit coefficients
+  Eigen::VectorXd fixed;    // density of the held terms (Q)
 };
 
 void set_densities(Model& mod, const Periodogram& p) {
@@ -192,6 +192,22 @@ Solution maximise_at_fixed_shape(const Model& mod, const Periodogram& p, Eigen::
   return sol;
 }
 
+// Golden-section search for the maximum of f on [a, z]; returns the best abscissa, *f_best its value.
+template <typename F>
+double golden_section_max(const F& f, double a, double z, int iterations, double* f_best) {
+  const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
+  double x1 = z - phi * (z - a), x2 = a + phi * (z - a), f1 = f(x1), f2 = f(x2);
+  for (int it = 0; it < iterations; ++it) {
+    if (f1 > f2) {
+      z = x2, x2 = x1, f2 = f1, x1 = z - phi * (z - a), f1 = f(x1);
+    } else {
+      a = x1, x1 = x2, f1 = f2, x2 = a + phi * (z - a), f2 = f(x2);
+    }
+  }
+  *f_best = std::max(f1, f2);
+  return f1 > f2 ? x1 : x2;
+}
+
 // Profile likelihood over ln T: a log grid, then golden section around its best point.
 Solution maximise(Model& mod, const Periodogram& p, const Eigen::VectorXd& start, int gm_index) {
   if (gm_index < 0) {
@@ -212,24 +228,17 @@ Solution maximise(Model& mod, const Periodogram& p, const Eigen::VectorXd& start
     const double l = at(lo + g * step).log_likelihood;
     if (l > best_l) best_l = l, best_ln = lo + g * step;
   }
-  double a = best_ln - step, z = best_ln + step;
-  const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
-  double x1 = z - phi * (z - a), x2 = a + phi * (z - a);
-  double f1 = at(x1).log_likelihood, f2 = at(x2).log_likelihood;
-  for (int it = 0; it < 30; ++it) {
-    if (f1 > f2) z = x2, x2 = x1, f2 = f1, x1 = z - phi * (z - a), f1 = at(x1).log_likelihood;
-    else a = x1, x1 = x2, f1 = f2, x2 = a + phi * (z - a), f2 = at(x2).log_likelihood;
-  }
-  const double ln_t = std::max(f1, f2) >= best_l ? (f1 > f2 ? x1 : x2) : best_ln;
-  return at(ln_t);
+  double refined_l = 0.0;
+  const double refined_ln = golden_section_max([&](double x) { return at(x).log_likelihood; }, best_ln - step,
+                                               best_ln + step, 30, &refined_l);
+  return at(refined_l >= best_l ? refined_ln : best_ln);
 }
 
 // Inverse Fisher information of the squared coefficients in `idx` (and ln T last when the
 // Gauss-Markov term is among them with c > 0): sum count g g^T / S^2, g = dS/dparameter.
 Eigen::MatrixXd fisher_covariance(const Model& mod, const Periodogram& p, const Eigen::VectorXd& c,
                                   const std::vector<int>& idx, int gm_index) {
-  const bool with_shape = gm_index >= 0 && c(gm_index) > 0 &&
-                          std::find(idx.begin(), idx.end(), gm_index) != idx.end();
+  const bool with_shape = gm_index >= 0 && c(gm_index) > 0 && std::find(idx.begin(), idx.end(), gm_index) != idx.end();
   const int q = static_cast<int>(idx.size()) + (with_shape ? 1 : 0);
   const long nb = static_cast<long>(p.nu.size());
   const Eigen::VectorXd s = model_density(mod, c);
@@ -255,7 +264,6 @@ Eigen::MatrixXd fisher_covariance(const Model& mod, const Periodogram& p, const 
   return p.taper_variance_factor * scale.cwiseInverse().asDiagonal() * cov * scale.cwiseInverse().asDiagonal();
 }
 
-
 // Profile likelihood of term j's squared coefficient: the maximum over the other terms (and the
 // Gauss-Markov T, searched within a factor e of its estimate) with c_j held at cj.
 double profile_log_likelihood(const Model& mod, const Periodogram& p, const Solution& best, int j, double cj) {
@@ -279,14 +287,9 @@ double profile_log_likelihood(const Model& mod, const Periodogram& p, const Solu
   };
   const double ln_t0 = std::log(std::max(mod.gm_t_s, 1e-300));
   if (!has_gm) return at(ln_t0);
-  double a = ln_t0 - 1.0, z = ln_t0 + 1.0;
-  const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
-  double x1 = z - phi * (z - a), x2 = a + phi * (z - a), f1 = at(x1), f2 = at(x2);
-  for (int it = 0; it < 12; ++it) {
-    if (f1 > f2) z = x2, x2 = x1, f2 = f1, x1 = z - phi * (z - a), f1 = at(x1);
-    else a = x1, x1 = x2, f1 = f2, x2 = a + phi * (z - a), f2 = at(x2);
-  }
-  return std::max({f1, f2, at(ln_t0)});
+  double l_searched = 0.0;
+  golden_section_max(at, ln_t0 - 1.0, ln_t0 + 1.0, 12, &l_searched);
+  return std::max(l_searched, at(ln_t0));
 }
 
 // Likelihood-ratio interval of c_j: where the profile falls `drop` (chi2_1 quantile / 2) below
@@ -319,7 +322,6 @@ std::pair<double, double> profile_interval(const Model& mod, const Periodogram& 
   return {lower, upper};
 }
 
-
 // The rate ramp R from the taper-weighted mean of d (= R tau_b plus noise). Its variance,
 // sum h_j h_k gamma(j - k) / (sum h)^2: a random walk's d is white at frequency 0 (K^2 tau_b
 // sum h^2); every other term's d is a difference, which summation by parts turns into the block
@@ -331,7 +333,8 @@ void ramp_estimate(const Model& mod, const Periodogram& p, const Eigen::VectorXd
     if (mod.terms[j] == ModelTerm::kK) {
       var += c(j) * block_difference_density(ModelTerm::kK, 0.0, p.tau_b) * p.sum_h2;
     } else {
-      const double s_ybar = block_difference_density(mod.terms[j], nu_edge, p.tau_b, mod.gm_t_s) / (4.0 * s_edge * s_edge);
+      const double s_ybar =
+          block_difference_density(mod.terms[j], nu_edge, p.tau_b, mod.gm_t_s) / (4.0 * s_edge * s_edge);
       var += c(j) * s_ybar * p.sum_dh2;
     }
   }
@@ -360,7 +363,8 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
   if (mod.terms.empty()) throw std::invalid_argument("likelihood fit: none of N, B, K in the model");
   const double q = curve[ModelTerm::kQ].in_model ? curve[ModelTerm::kQ].value : 0.0;
   mod.fixed.resize(static_cast<long>(p.nu.size()));
-  for (size_t b = 0; b < p.nu.size(); ++b) mod.fixed(b) = q * q * block_difference_density(ModelTerm::kQ, p.nu[b], p.tau_b);
+  for (size_t b = 0; b < p.nu.size(); ++b)
+    mod.fixed(b) = q * q * block_difference_density(ModelTerm::kQ, p.nu[b], p.tau_b);
 
   // Start from the curve fit; a term it left at 0 starts small but positive, so the scoring can
   // still bring it in.
@@ -369,7 +373,8 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
   for (size_t j = 0; j < mod.terms.size(); ++j) {
     const double v = curve[mod.terms[j]].value;
     double reach = 0.0;  // the coefficient at which this term alone would explain some bin
-    for (size_t b = 0; b < p.nu.size(); ++b) reach = std::max(reach, p.mean_ordinate[b] / std::max(mod.density(b, j), 1e-300));
+    for (size_t b = 0; b < p.nu.size(); ++b)
+      reach = std::max(reach, p.mean_ordinate[b] / std::max(mod.density(b, j), 1e-300));
     start(j) = std::max(v * v, 1e-4 * reach);
   }
   const Solution sol = maximise(mod, p, start, gm_index);
@@ -460,7 +465,8 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
   for (ModelTerm term : mod.terms) {
     const TermEstimate& t = out[term];
     if (!std::isfinite(t.value + t.sigma + t.lo + t.hi + t.shape + t.shape_sigma)) {
-      throw std::invalid_argument(std::string("likelihood fit: ") + model_term_name(term) + " not finite (the curve fit is kept)");
+      throw std::invalid_argument(std::string("likelihood fit: ") + model_term_name(term) +
+                                  " not finite (the curve fit is kept)");
     }
   }
   if (summary) {
@@ -498,7 +504,8 @@ RelativeBounds whittle_cramer_rao(const NoiseLevels& truth, double tau0_s, long 
   add(ModelTerm::kGaussMarkov, truth.gm_sigma);
   mod.gm_t_s = truth.gm_t_s;
   mod.fixed.resize(static_cast<long>(p.nu.size()));
-  for (size_t b = 0; b < p.nu.size(); ++b) mod.fixed(b) = truth.q * truth.q * block_difference_density(ModelTerm::kQ, p.nu[b], p.tau_b);
+  for (size_t b = 0; b < p.nu.size(); ++b)
+    mod.fixed(b) = truth.q * truth.q * block_difference_density(ModelTerm::kQ, p.nu[b], p.tau_b);
   set_densities(mod, p);
   const Eigen::VectorXd cv = Eigen::Map<const Eigen::VectorXd>(c.data(), c.size());
   std::vector<int> all(c.size());
@@ -508,11 +515,20 @@ RelativeBounds whittle_cramer_rao(const NoiseLevels& truth, double tau0_s, long 
   for (size_t j = 0; j < c.size(); ++j) {
     const double rel = 0.5 * std::sqrt(std::max(0.0, cov(j, j))) / c[j];  // sd(sqrt c)/sqrt c
     switch (mod.terms[j]) {
-      case ModelTerm::kN: out.n = rel; break;
-      case ModelTerm::kB: out.b = rel; break;
-      case ModelTerm::kK: out.k = rel; break;
-      case ModelTerm::kGaussMarkov: out.gm_sigma = rel; break;
-      default: break;
+      case ModelTerm::kN:
+        out.n = rel;
+        break;
+      case ModelTerm::kB:
+        out.b = rel;
+        break;
+      case ModelTerm::kK:
+        out.k = rel;
+        break;
+      case ModelTerm::kGaussMarkov:
+        out.gm_sigma = rel;
+        break;
+      default:
+        break;
     }
   }
   if (gm_index >= 0) out.gm_t = std::sqrt(std::max(0.0, cov(c.size(), c.size())));
@@ -523,11 +539,16 @@ namespace {
 
 double bound_of(const RelativeBounds& b, ModelTerm t) {
   switch (t) {
-    case ModelTerm::kN: return b.n;
-    case ModelTerm::kB: return b.b;
-    case ModelTerm::kK: return b.k;
-    case ModelTerm::kGaussMarkov: return b.gm_sigma;
-    default: return 0.0;
+    case ModelTerm::kN:
+      return b.n;
+    case ModelTerm::kB:
+      return b.b;
+    case ModelTerm::kK:
+      return b.k;
+    case ModelTerm::kGaussMarkov:
+      return b.gm_sigma;
+    default:
+      return 0.0;
   }
 }
 

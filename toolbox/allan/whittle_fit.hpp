@@ -20,10 +20,10 @@
 namespace ldv::allan {
 
 struct WhittleSummary {
-  double block_s = 0.0;   // tau_b: the rate is averaged over blocks of this length
-  long ordinates = 0;     // Fourier ordinates used (frequency 0 and Nyquist excluded)
+  double block_s = 0.0;  // tau_b: the rate is averaged over blocks of this length
+  long ordinates = 0;    // Fourier ordinates used (frequency 0 and Nyquist excluded)
   double log_likelihood = 0.0;
-  int iterations = 0;     // scoring iterations at the final Gauss-Markov time constant
+  int iterations = 0;  // scoring iterations at the final Gauss-Markov time constant
 };
 
 // `curve`: the Allan-curve fit of the same series (start values, Q and R, slope lines, misfit).
