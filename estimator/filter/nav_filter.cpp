@@ -175,7 +175,7 @@ void NavFilter::process_imu(const ImuIncrement& raw) {
     const Measurement zupt = zero_velocity_measurement(c_.nav, layout_, opt_.zupt.std_mps);
     // A ZUPT that continues a stop must agree with the velocity the previous ones left: the detector
     // cannot see a smooth start (|f| ~ g, a small horizontal force at first), and zeroing the 2-3
-    // cm/s the vehicle then already has, with a 1 cm/s std, corrupts the velocity and tilt for the
+    // cm/s the vehicle then already has, with a 2 cm/s std, corrupts the velocity and tilt for the
     // rest of an outage (meters after a minute). The first ZUPT of a stop goes to the usual gate.
     const bool continuing = c_.nav.t_s - c_.last_zupt_t_s < 2.0 * opt_.zupt.period_s;
     const Mat3 s_zupt = c_.P.block<3, 3>(kVel, kVel) + zupt.R;

@@ -57,7 +57,7 @@ void print_tables(std::FILE* out, const std::vector<ChannelResult>& results) {
     }
     const NoiseFit& f = *r.fit;
     if (r.likelihood) {
-      std::fprintf(out, "  N, B, K: likelihood of the raw data (Whittle; blocks of %.4g s, %ld ordinates); Q, R: Allan-curve fit\n",
+      std::fprintf(out, "  N, B, K, R: likelihood of the raw data (Whittle; blocks of %.4g s, %ld ordinates); Q: Allan-curve fit\n",
                    r.likelihood->block_s, r.likelihood->ordinates);
     } else {
       std::fprintf(out, "  fit to the Allan variance curve (%s)%s%s\n", f.gls ? "generalized LS" : "weighted LS",

@@ -384,6 +384,16 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
 
   NoiseFit out = curve;
   out.method = "whittle";
+  // Dominant somewhere: the term carries at least half of the whole model's Allan variance at some
+  // tau between tau0 and a quarter of the record (`out` holds the other terms' final values).
+  const double tau_lo = s.tau0_s, tau_hi = 0.25 * s.tau0_s * (static_cast<double>(s.x.size()) - 1);
+  auto dominant_somewhere = [&](ModelTerm term, double c, double shape) {
+    for (int i = 0; i <= 60 && tau_hi > tau_lo; ++i) {
+      const double tau = tau_lo * std::pow(tau_hi / tau_lo, i / 60.0);
+      if (c * term_avar(term, tau, shape) >= 0.5 * out.model_avar(tau)) return true;
+    }
+    return false;
+  };
   const double z = normal_quantile(0.5 + 0.5 * opt.interval_confidence);
   std::vector<int> active, all;
   for (int j = 0; j < sol.c.size(); ++j) {
@@ -430,11 +440,6 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
     t.sigma = sigma_r;
     t.lo = std::max(0.0, r - z * sigma_r);
     t.hi = r + z * sigma_r;
-    bool dominant = false;
-    for (int i = 0; i <= 60; ++i) {
-      const double tau = s.tau0_s * std::pow(0.25 * (static_cast<double>(s.x.size()) - 1), i / 60.0);
-      if (r * r * term_avar(ModelTerm::kR, tau) >= 0.5 * out.model_avar(tau)) dominant = true;
-    }
     // The walk's own excursion over the record looks like a ramp, and its size is known only as
     // well as K: the ramp counts as resolved when it stands out even at the largest K the data
     // allow (the upper end of K's interval), at 3 sigma, since it is a signed estimate tested
@@ -448,19 +453,13 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
       double r_unused = 0.0;
       ramp_estimate(mod, p, c_worst, r_unused, sigma_r_worst);
     }
-    t.resolved = r > 3.0 * sigma_r_worst && dominant;
+    t.resolved = r > 3.0 * sigma_r_worst && dominant_somewhere(ModelTerm::kR, r * r, 0.0);
   }
-  // Resolved: significant with every term free and dominant (>= half the Allan variance of the
-  // whole model, curve-fit Q and R included) somewhere between tau0 and a quarter of the record.
-  const double tau_lo = s.tau0_s, tau_hi = 0.25 * s.tau0_s * (static_cast<double>(s.x.size()) - 1);
+  // Resolved: significant with every term free, and dominant somewhere.
   for (int j = 0; j < sol.c.size(); ++j) {
     TermEstimate& t = out[mod.terms[j]];
-    bool dominant = false;
-    for (int i = 0; i <= 60 && tau_hi > tau_lo; ++i) {
-      const double tau = tau_lo * std::pow(tau_hi / tau_lo, i / 60.0);
-      if (sol.c(j) * term_avar(mod.terms[j], tau, t.shape) >= 0.5 * out.model_avar(tau)) dominant = true;
-    }
-    t.resolved = sol.c(j) > 2.0 * std::max(sigma_c[j], sigma_free[j]) && dominant;
+    t.resolved =
+        sol.c(j) > 2.0 * std::max(sigma_c[j], sigma_free[j]) && dominant_somewhere(mod.terms[j], sol.c(j), t.shape);
   }
   for (ModelTerm term : mod.terms) {
     const TermEstimate& t = out[term];

@@ -10,9 +10,9 @@
 // weighs each of them by what it says.
 //
 // Terms: N, B (flat) or the Gauss-Markov bias (sigma, T), K are estimated; Q is held at the curve
-// fit's value (it lives at the shortest tau, where the curve is already efficient); R, a ramp, is
-// a constant in the differences (frequency 0, not used) and stays the curve fit's. Not with a
-// sinusoid in the model (a spectral line, not a density).
+// fit's value (it lives at the shortest tau, where the curve is already efficient); R, a ramp, is a
+// constant in the differences: estimated from their taper-weighted mean against the noise the
+// other terms put there. Not with a sinusoid in the model (a spectral line, not a density).
 #include "toolbox/allan/avar_covariance.hpp"
 #include "toolbox/allan/noise_fit.hpp"
 #include "toolbox/allan/phase_series.hpp"
@@ -27,8 +27,8 @@ struct WhittleSummary {
 };
 
 // `curve`: the Allan-curve fit of the same series (start values, Q and R, slope lines, misfit).
-// Returns `curve` with N, B / GM and K replaced by their likelihood estimates (value, sigma,
-// interval, resolved; sigmas from the Fisher information). Throws std::invalid_argument when the
+// Returns `curve` with N, B / GM, K and R replaced by their likelihood estimates (value, sigma,
+// interval, resolved; sigmas from the Fisher information, intervals from the profile likelihood). Throws std::invalid_argument when the
 // series gives fewer than 64 blocks or the model has a sinusoid.
 NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptions& opt, double block_s,
                      WhittleSummary* summary = nullptr);
