@@ -59,6 +59,10 @@ struct FilterOptions {
   double time_offset_init_s = 0.0, time_offset_std_s = 0.01;
   MovingBiasOptions gyro_moving_bias, accel_moving_bias;
 
+  // Taken out of every raw gyro increment before anything else: a turn-on bias the alignment's static
+  // start showed (Aligner::gyro_bias_seed; NavFilter::set_input_gyro_bias). The gyro-bias states then
+  // estimate what is left, inside their configured prior.
+  Vec3 input_gyro_bias_rad_s = Vec3::Zero();
   double cov_period_s = 0.1;         // covariance propagated at least this often (and at each measurement)
   double gate_probability = 0.9999;  // chi-square gate on the NIS of each 3-D measurement
   int gate_max_consecutive_rejects = 10;  // then accept (re-synchronise) and flag

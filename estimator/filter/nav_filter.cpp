@@ -94,7 +94,9 @@ void NavFilter::rebuild_error_model() {
   c_.mech.set_gravity_anomaly_n(m.gravity_anomaly_n_mps2);
 }
 
-void NavFilter::add_imu(const ImuIncrement& raw) {
+void NavFilter::add_imu(const ImuIncrement& input) {
+  ImuIncrement raw = input;
+  raw.dtheta_b_rad -= opt_.input_gyro_bias_rad_s * raw.dt_s;
   if (!std::isfinite(raw.t_s) || !(raw.dt_s > 0.0) || !raw.dtheta_b_rad.allFinite() || !raw.dvel_b_mps.allFinite()) {
     c_.status |= kStatusImuRejected;
     ++faults_.imu_rejected;

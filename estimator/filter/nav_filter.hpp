@@ -49,6 +49,8 @@ class NavFilter {
   const ImuErrorModel& error_model() const { return c_.model; }
   const StateLayout& layout() const { return layout_; }
   const FilterOptions& options() const { return opt_; }
+  // FilterOptions::input_gyro_bias_rad_s, set once the alignment has seen it (after initialize).
+  void set_input_gyro_bias(const Vec3& gyro_bias_rad_s) { opt_.input_gyro_bias_rad_s = gyro_bias_rad_s; }
   std::uint32_t status() const { return c_.status; }
   const FaultCounters& faults() const { return faults_; }
   // Angular rate and specific force of the last sample, error-compensated (body axes).

@@ -25,7 +25,8 @@ double gyrocompass_yaw_std(double lat, double bias, double arw, double T) {
   return sigma_w / (earth::kOmegaIe_rad_s * std::cos(lat));
 }
 
-Aligner::Aligner(AlignmentOptions o) : o_(o), detector_(0.5, 0.05, 0.5 * kDegToRad) {}
+Aligner::Aligner(AlignmentOptions o)
+    : o_(o), detector_(0.5, 0.05, 0.5 * kDegToRad, o.vrw_mps_per_sqrt_s, o.arw_rad_per_sqrt_s) {}
 
 void Aligner::add_imu(const ImuIncrement& raw) {
   t_s_ = raw.t_s;
@@ -42,7 +43,10 @@ void Aligner::add_imu(const ImuIncrement& raw) {
     }
   }
   if (!levelled_ && (moving_seen_ || static_s_ >= o_.static_min_s)) level();
-  if (levelled_ && moving_seen_) q_b_l_ = (q_b_l_ * quat_from_rotvec(raw.dtheta_b_rad)).normalized();
+  if (levelled_ && moving_seen_) {
+    const Vec3 dtheta = gyro_bias_seed_ ? Vec3(raw.dtheta_b_rad - *gyro_bias_seed_ * raw.dt_s) : raw.dtheta_b_rad;
+    q_b_l_ = (q_b_l_ * quat_from_rotvec(dtheta)).normalized();
+  }
 }
 
 void Aligner::level() {
@@ -52,6 +56,11 @@ void Aligner::level() {
   const double s = std::max(o_.accel_bias_std_mps2 / 9.8, 0.05 * kDegToRad);
   level_std_rad_ = Vec3(s, s, 0.0);
   if (static_s_ < 1.0) level_std_rad_ = Vec3::Constant(5.0 * kDegToRad);  // no static start: rough
+  // At rest the gyros read Earth rate plus their bias. Far above Earth rate the mean is the bias
+  // (Earth rate's share, whatever the heading, stays under a tenth of it); a tactical gyro's mean is
+  // Earth rate and stays in the data (gyrocompassing reads it).
+  const Vec3 mean_rate = sum_dtheta_ / std::max(static_s_, 1e-9);
+  if (static_s_ >= 1.0 && mean_rate.norm() > 10.0 * earth::kOmegaIe_rad_s) gyro_bias_seed_ = mean_rate;
   levelled_ = true;
 }
 

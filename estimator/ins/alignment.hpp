@@ -7,6 +7,9 @@
 //  3. otherwise heading = course over ground from GNSS velocity once moving faster than speed_min_mps
 //     (the body x axis is assumed to point along the velocity), with the attitude carried from the
 //     levelling by integrating the gyros in the meantime.
+// A gyro turn-on bias far above Earth rate (a MEMS IMU: tenths of a degree per second) shows as the
+// mean rate of the static start: it is taken out of the carried attitude and reported
+// (gyro_bias_seed), for the filter to take out of the increments too (set_input_gyro_bias).
 #include <optional>
 #include <string>
 
@@ -26,6 +29,7 @@ double gyrocompass_yaw_std(double lat_rad, double gyro_bias_rad_s, double arw_ra
 struct AlignmentOptions {
   double gyro_bias_std_rad_s = 1.0 * kDegToRad / 3600.0;
   double arw_rad_per_sqrt_s = 0.003 * kDegToRad;
+  double vrw_mps_per_sqrt_s = 0.0;  // with arw: the static detector allows for the sensor's noise
   double accel_bias_std_mps2 = 1e-3 * 9.8;
   double static_min_s = 5.0;        // levelling needs this much static data
   double gyrocompass_min_s = 60.0;  // and gyrocompassing this much
@@ -49,6 +53,8 @@ class Aligner {
   const NavState& state() const { return result_->first; }
   const NavStd& std() const { return result_->second; }
   const std::string& method() const { return method_; }
+  // The static start's mean rate when it is a turn-on bias (> 10 x Earth rate, from >= 1 s at rest).
+  const std::optional<Vec3>& gyro_bias_seed() const { return gyro_bias_seed_; }
 
  private:
   void level();
@@ -63,6 +69,7 @@ class Aligner {
   Vec3 level_std_rad_ = Vec3::Zero();
   std::optional<GnssFix> prev_fix_;
   std::optional<std::pair<NavState, NavStd>> result_;
+  std::optional<Vec3> gyro_bias_seed_;
   std::string method_;
 };
 

@@ -7,6 +7,7 @@ AlignmentOptions alignment_options_from(const FilterOptions& fo) {
   AlignmentOptions ao;
   ao.gyro_bias_std_rad_s = fo.gyro_bias.init_std.maxCoeff();
   ao.arw_rad_per_sqrt_s = fo.arw_rad_per_sqrt_s.maxCoeff();
+  ao.vrw_mps_per_sqrt_s = fo.vrw_mps_per_sqrt_s.maxCoeff();
   ao.accel_bias_std_mps2 = fo.accel_bias.init_std.maxCoeff();
   ao.lever_arm_b_m = fo.lever_arm.init;
   ao.speed_min_mps = fo.align_speed_mps;

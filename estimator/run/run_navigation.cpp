@@ -1,6 +1,7 @@
 #include "estimator/run/run_navigation.hpp"
 
 #include <algorithm>
+#include <cstdio>
 
 #include "common/geo/earth_model.hpp"
 #include "common/io/input_error.hpp"
@@ -94,6 +95,7 @@ struct DataAlignment {
   NavStd std;
   std::string method;
   size_t imu_index = 0, gnss_index = 0;  // the first IMU sample / fix not consumed by the alignment
+  Vec3 gyro_bias_seed_rad_s = Vec3::Zero();  // a turn-on bias the static start showed (else 0)
 };
 
 // The aligner over imu[i...] and the fixes from gnss[g...] up to each IMU epoch; throws when it never aligns.
@@ -110,7 +112,7 @@ DataAlignment align_from_data(const std::vector<ImuIncrement>& imu, const std::v
                      "could not align: no static period with usable gyros and no GNSS speed above " +
                          std::to_string(ao.speed_min_mps) + " m/s "
                      "(give initpos/initvel/initatt in the configuration)");
-  return {aligner.state(), aligner.std(), aligner.method(), i, g};
+  return {aligner.state(), aligner.std(), aligner.method(), i, g, aligner.gyro_bias_seed().value_or(Vec3::Zero())};
 }
 
 size_t first_imu_index(const std::vector<ImuIncrement>& imu, const KfGinsConfig& cfg) {
@@ -138,6 +140,9 @@ RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vecto
   size_t g = 0;
 
   const bool given = cfg.init_pos && cfg.init_vel_n_mps && cfg.init_rpy_rad;
+  // A turn-on bias seen by the alignment's static start, taken out of every increment by the filter
+  // (FilterOptions::input_gyro_bias_rad_s): it then estimates what is left, inside its prior.
+  Vec3 gyro_bias_seed = Vec3::Zero();
   if (given) {
     NavState s;
     // The given state holds at the start of the first increment (KF-GINS: at starttime).
@@ -159,6 +164,13 @@ RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vecto
     NavState s0 = al.state;
     NavStd sd0 = al.std;
     sum.initialisation = al.method;
+    gyro_bias_seed = al.gyro_bias_seed_rad_s;
+    if (!gyro_bias_seed.isZero()) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "; gyro turn-on bias from the static start [%.4f %.4f %.4f] deg/s taken out",
+                    gyro_bias_seed.x() * kRadToDeg, gyro_bias_seed.y() * kRadToDeg, gyro_bias_seed.z() * kRadToDeg);
+      sum.initialisation += buf;
+    }
     if (ao.course_hypotheses > 1 && sum.initialisation.find("course") != std::string::npos) {
       // Unknown mounting: which body heading matches the GNSS track over the next course_trial_s?
       const double step = 2.0 * kPi / ao.course_hypotheses;
@@ -171,6 +183,7 @@ RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vecto
         NavStd sd = sd0;
         sd.att_rad.z() = std::max(sd0.att_rad.z(), 0.5 * step);
         trial.initialize(s, sd);
+        trial.set_input_gyro_bias(gyro_bias_seed);
         size_t gi = g;
         while (gi < gnss.size() && gnss[gi].t_s <= s.t_s) ++gi;
         double cost = 0.0;
@@ -192,8 +205,10 @@ RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vecto
                             " deg from the course)";
     }
     filter.initialize(s0, sd0);
+    filter.set_input_gyro_bias(gyro_bias_seed);
   }
   sum.t_start_s = filter.state().t_s;
+  sum.gyro_bias_seed_rad_s = gyro_bias_seed;
   // Fixes before the initial epoch are not used.
   while (g < gnss.size() && gnss[g].t_s <= filter.state().t_s) ++g;
 

@@ -30,6 +30,7 @@ struct RunSummary {
   long imu_samples = 0, gnss_fixes = 0;
   double t_start_s = 0.0, t_end_s = 0.0;
   std::string initialisation;  // "given", or the alignment method
+  Vec3 gyro_bias_seed_rad_s = Vec3::Zero();  // turn-on bias from the static start, taken out (alignment.hpp)
   FaultCounters faults;
   std::uint32_t final_status = 0;
 };

@@ -59,6 +59,8 @@ void FusionEngine::drain_alignment_queue(double now_s, std::vector<FusionOutput>
     imu_queue_.pop_front();
     if (aligner_.aligned()) {
       start_navigation(aligner_.state(), aligner_.std(), aligner_.method());
+      // A turn-on bias the static start showed, taken out as ldv nav does (not kept by a warm start).
+      filter_.set_input_gyro_bias(aligner_.gyro_bias_seed().value_or(Vec3::Zero()));
       // As offline: fixes up to the initial epoch are not used, the rest go to the filter.
       for (const GnssFix& g : gnss_queue_)
         if (g.t_s > filter_.state().t_s) filter_.add_gnss(g);

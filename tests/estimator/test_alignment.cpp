@@ -96,8 +96,47 @@ TEST(Alignment, MemsHeadingFromGnssCourseThenFilterConverges) {
   const RunSummary sum = run_navigation(sim.imu, sim.gnss, cfg, filter, cb);
   std::printf("MEMS alignment: %s at %.1f s, yaw error at the end %.3f deg\n", sum.initialisation.c_str(),
               sum.t_start_s - t0, yaw_err_end * kRadToDeg);
-  EXPECT_EQ(sum.initialisation, "levelling + GNSS course over ground");
+  EXPECT_EQ(sum.initialisation.rfind("levelling + GNSS course over ground", 0), 0u) << sum.initialisation;
   EXPECT_LT(std::abs(yaw_err_end), 1.5 * kDegToRad);
+}
+
+TEST(Alignment, MemsTurnOnBiasFromTheStaticStartKeepsAnInRunPriorConsistent) {
+  // Given a MEMS IMU with a turn-on gyro bias of a few tenths of a degree per second and a
+  // configuration whose gyro-bias prior is the datasheet's in-run instability (20 deg/h), as users
+  // often write it, and no initial state
+  const auto sim = simulate("3dm-gx2", "drive", 240.0, 3);
+  KfGinsConfig cfg = sim.kfgins;
+  cfg.init_pos.reset();
+  cfg.init_vel_n_mps.reset();
+  cfg.init_rpy_rad.reset();
+  FilterOptions o = options_from_kfgins(cfg);
+  o.gyro_bias.init_std = Vec3::Constant(20.0 * kDegToRad / 3600.0);
+  o.gyro_bias.sigma = o.gyro_bias.init_std;
+  NavFilter filter(o);
+  double yaw_err_max = 0;
+  RunCallbacks cb;
+  const double t0 = sim.truth.front().t_s, dt = 1.0 / sim.request.imu_rate_hz;
+  cb.on_epoch = [&](const NavFilter& f) {
+    const size_t k = static_cast<size_t>(std::llround((f.state().t_s - t0) / dt));
+    if (k < sim.truth.size()) yaw_err_max = std::max(yaw_err_max, std::abs(test::nav_error(f.state(), sim.truth[k])(8)));
+  };
+  const RunSummary sum = run_navigation(sim.imu, sim.gnss, cfg, filter, cb);
+  // Then the static start's mean rate is taken as that bias (truth: the injected turn-on bias plus
+  // Earth rate; the in-run Gauss-Markov part, 100 deg/h, is what remains)
+  const std::vector<double>& b = sim.injected_effects.at("gyro_bias");
+  const auto& rest = sim.truth.front();
+  const Vec3 static_rate = Vec3(b[0], b[1], b[2]) +
+                           C_b_n_from_euler(rest.rpy_rad).transpose() * earth::omega_ie_n(rest.pos.lat_rad);
+  std::printf("turn-on bias seed [%.4f %.4f %.4f] deg/s, truth [%.4f %.4f %.4f] deg/s; gate rejections %ld, "
+              "largest yaw error %.2f deg\n", sum.gyro_bias_seed_rad_s.x() * kRadToDeg,
+              sum.gyro_bias_seed_rad_s.y() * kRadToDeg, sum.gyro_bias_seed_rad_s.z() * kRadToDeg,
+              static_rate.x() * kRadToDeg, static_rate.y() * kRadToDeg, static_rate.z() * kRadToDeg,
+              sum.faults.gate_rejections, yaw_err_max * kRadToDeg);
+  EXPECT_LT((sum.gyro_bias_seed_rad_s - static_rate).norm(), 0.3 * static_rate.norm());
+  // and the navigation stays consistent: no GNSS fix is rejected, the heading stays within 1.5 deg
+  // (without the seed: 40 rejections, 4 re-synchronisations, 10 deg of heading error).
+  EXPECT_EQ(sum.faults.gate_rejections, 0);
+  EXPECT_LT(yaw_err_max, 1.5 * kDegToRad);
 }
 
 }  // namespace
