@@ -145,7 +145,7 @@ void add_allan_command(CLI::App& app) {
   cmd->add_flag("--sinusoid", args->sinusoid, "add a sinusoidal term to the fit");
   cmd->add_flag("--no-fit", args->no_fit, "deviations only");
   cmd->add_flag("--curve-only", args->curve_only,
-                "fit the Allan variance curve only (default for rate input: refine N, B, K by the likelihood of the raw data)");
+                "fit the Allan variance curve only (default for rate input: refine N, B, K, R by the likelihood of the raw data)");
   cmd->add_option("--likelihood-block", args->likelihood_block_s,
                   "the likelihood fit averages the rate over blocks of this length first [s]")
       ->check(CLI::PositiveNumber);
