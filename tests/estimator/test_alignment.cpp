@@ -31,6 +31,14 @@ TEST(Alignment, LevellingAndGyrocompassingAnyMountingIncludingUpsideDown) {
   }
 }
 
+// The configuration with no initial state: the run must align from the data.
+KfGinsConfig without_initial_state(KfGinsConfig cfg) {
+  cfg.init_pos.reset();
+  cfg.init_vel_n_mps.reset();
+  cfg.init_rpy_rad.reset();
+  return cfg;
+}
+
 sim::SimResult simulate(const std::string& grade, const std::string& scenario, double duration_s, uint64_t seed) {
   sim::SimRequest req;
   req.grade = grade;
@@ -80,10 +88,7 @@ TEST(Alignment, GyrocompassingTacticalGradeWithinItsTheoreticalAccuracy) {
 TEST(Alignment, MemsHeadingFromGnssCourseThenFilterConverges) {
   // Given a MEMS IMU that cannot sense Earth rate, no initial state in the configuration
   const auto sim = simulate("3dm-gx2", "drive", 400.0, 6);
-  KfGinsConfig cfg = sim.kfgins;
-  cfg.init_pos.reset();
-  cfg.init_vel_n_mps.reset();
-  cfg.init_rpy_rad.reset();
+  const KfGinsConfig cfg = without_initial_state(sim.kfgins);
   FilterOptions o = options_from_kfgins(cfg);
   NavFilter filter(o);
   double yaw_err_end = 0;
@@ -105,10 +110,7 @@ TEST(Alignment, MemsTurnOnBiasFromTheStaticStartKeepsAnInRunPriorConsistent) {
   // configuration whose gyro-bias prior is the datasheet's in-run instability (20 deg/h), as users
   // often write it, and no initial state
   const auto sim = simulate("3dm-gx2", "drive", 240.0, 3);
-  KfGinsConfig cfg = sim.kfgins;
-  cfg.init_pos.reset();
-  cfg.init_vel_n_mps.reset();
-  cfg.init_rpy_rad.reset();
+  const KfGinsConfig cfg = without_initial_state(sim.kfgins);
   FilterOptions o = options_from_kfgins(cfg);
   o.gyro_bias.init_std = Vec3::Constant(20.0 * kDegToRad / 3600.0);
   o.gyro_bias.sigma = o.gyro_bias.init_std;

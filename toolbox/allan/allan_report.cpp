@@ -37,6 +37,12 @@ std::string array_of(const std::vector<StabilityPoint>& pts, F get) {
   return o + "]";
 }
 
+// The estimate reported in the paper's row of term mt: B is the Gauss-Markov sigma when the
+// bias is modelled as Gauss-Markov.
+const TermEstimate& reported(const NoiseFit& f, ModelTerm mt) {
+  return mt == ModelTerm::kB && f[ModelTerm::kGaussMarkov].in_model ? f[ModelTerm::kGaussMarkov] : f[mt];
+}
+
 }  // namespace
 
 BiasProcess bias_process(const NoiseFit& fit) {
@@ -68,12 +74,10 @@ void print_tables(std::FILE* out, const std::vector<ChannelResult>& results) {
     for (int i = 0; i < 5; ++i) {
       const ModelTerm mt = kPaperTerms[i];
       const EngineeringUnit u = paper_unit(q, kUnitTerms[i]);
-      const TermEstimate* t = &f[mt];
-      const TermEstimate* curve = r.curve_fit ? &(*r.curve_fit)[mt] : nullptr;
+      const TermEstimate* t = &reported(f, mt);
+      const TermEstimate* curve = r.curve_fit ? &reported(*r.curve_fit, mt) : nullptr;
       std::string extra;
       if (mt == ModelTerm::kB && f[ModelTerm::kGaussMarkov].in_model) {
-        t = &f[ModelTerm::kGaussMarkov];
-        if (curve) curve = &(*r.curve_fit)[ModelTerm::kGaussMarkov];
         char buf[64];
         std::snprintf(buf, sizeof buf, "  (Gauss-Markov, T = %.4g s)", t->shape);
         extra = buf;
@@ -153,7 +157,7 @@ void write_json(const std::string& path, const std::string& input, const std::ve
       const bool gm = f[ModelTerm::kGaussMarkov].in_model;
       for (int i = 0; i < 5; ++i) {
         const ModelTerm mt = kPaperTerms[i];
-        const TermEstimate& t = (mt == ModelTerm::kB && gm) ? f[ModelTerm::kGaussMarkov] : f[mt];
+        const TermEstimate& t = reported(f, mt);
         const std::string n = term_name(kUnitTerms[i]);
         o << ",\n      \"" << n << "\": " << num(t.value) << ", \"" << n << "_sigma\": " << num(t.sigma) << ", \"" << n
           << "_lo\": " << num(t.lo) << ", \"" << n << "_hi\": " << num(t.hi) << ", \"" << n
@@ -175,7 +179,7 @@ void write_json(const std::string& path, const std::string& input, const std::ve
       for (int i = 0; i < 5; ++i) {
         const EngineeringUnit u = paper_unit(q, kUnitTerms[i]);
         const ModelTerm mt = kPaperTerms[i];
-        const TermEstimate& t = (mt == ModelTerm::kB && gm) ? f[ModelTerm::kGaussMarkov] : f[mt];
+        const TermEstimate& t = reported(f, mt);
         o << (i ? ", " : "") << "\"" << term_name(kUnitTerms[i]) << "\": {\"value\": " << num(t.value * u.from_si)
           << ", \"sigma\": " << num(t.sigma * u.from_si) << ", \"unit\": " << quoted(u.name) << "}";
       }
@@ -207,7 +211,7 @@ void write_json(const std::string& path, const std::string& input, const std::ve
         o << ",\n      \"allan_curve_fit\": {\"method\": " << quoted(cf.method);
         for (int i = 0; i < 5; ++i) {
           const ModelTerm mt = kPaperTerms[i];
-          const TermEstimate& t = (mt == ModelTerm::kB && gm) ? cf[ModelTerm::kGaussMarkov] : cf[mt];
+          const TermEstimate& t = reported(cf, mt);
           o << ", \"" << term_name(kUnitTerms[i]) << "\": {\"value\": " << num(t.value) << ", \"sigma\": " << num(t.sigma)
             << ", \"lo\": " << num(t.lo) << ", \"hi\": " << num(t.hi) << ", \"resolved\": " << (t.resolved ? "true" : "false") << "}";
         }

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 #include <unsupported/Eigen/FFT>
+#include <utility>
 #include <vector>
 
 #include "toolbox/allan/block_spectrum.hpp"
@@ -18,14 +19,43 @@ namespace {
 
 // The periodogram, ordinate by ordinate at the low frequencies where the slow terms live, then in
 // bins 1 % wide (the densities are smooth there; a bin counts as `count` ordinates at its mean).
+// The split cosine bell over 10 % of n at each end (see the taper comment in
+// periodogram_of_block_differences), and its sums.
+struct TaperSums {
+  long edge = 1;
+  double sum_h = 0.0, sum_h2 = 0.0, sum_dh2 = 0.0;
+  double variance_factor = 1.0;  // n sum h^4 / (sum h^2)^2: what the taper costs in variance
+};
+
+long taper_edge(long n) { return std::max(1L, n / 10); }
+
+double split_cosine_bell(long j, long n, long edge) {
+  const long from_end = std::min(j, n - 1 - j);
+  return from_end < edge ? 0.5 * (1.0 - std::cos(M_PI * (from_end + 0.5) / edge)) : 1.0;
+}
+
+TaperSums split_cosine_bell_sums(long n) {
+  TaperSums t;
+  t.edge = taper_edge(n);
+  double h4 = 0.0, previous = 0.0;
+  for (long j = 0; j < n; ++j) {
+    const double h = split_cosine_bell(j, n, t.edge);
+    t.sum_h += h, t.sum_h2 += h * h, h4 += h * h * h * h;
+    if (j > 0) t.sum_dh2 += (h - previous) * (h - previous);
+    previous = h;
+  }
+  t.variance_factor = n * h4 / (t.sum_h2 * t.sum_h2);
+  return t;
+}
+
+// The periodogram, ordinate by ordinate at the low frequencies where the slow terms live, then in
+// bins 1 % wide (the densities are smooth there; a bin counts as `count` ordinates at its mean).
 struct Periodogram {
   std::vector<double> nu, mean_ordinate, count;
   double tau_b = 0.0;
   long ordinates = 0, blocks = 0;
-  double taper_variance_factor = 1.0;  // n sum h^4 / (sum h^2)^2: what the taper costs in variance
-  // For the ramp: the taper-weighted mean of d, sum h, sum h^2, sum (h_j - h_{j-1})^2, edge length.
-  double weighted_mean = 0.0, sum_h = 0.0, sum_h2 = 0.0, sum_dh2 = 0.0;
-  long edge = 1;
+  TaperSums taper;
+  double weighted_mean = 0.0;  // taper-weighted mean of d (the ramp's R tau_b plus noise)
 };
 
 // Largest 2^a 3^b 5^c <= n: the FFT stays O(n log n) without padding (padding would taper the
@@ -38,29 +68,6 @@ long smooth_length(long n) {
     if (r == 1) return l;
   }
   return n;
-}
-
-// The split cosine bell over 10 % of n at each end (see the taper comment below), its sums.
-struct Taper {
-  std::vector<double> h;
-  long edge = 1;
-  double sum_h = 0.0, sum_h2 = 0.0, sum_dh2 = 0.0, variance_factor = 1.0;
-};
-
-Taper split_cosine_bell(long n) {
-  Taper t;
-  t.edge = std::max(1L, n / 10);
-  t.h.resize(n);
-  double h4 = 0.0;
-  for (long j = 0; j < n; ++j) {
-    const long from_end = std::min(j, n - 1 - j);
-    const double h = from_end < t.edge ? 0.5 * (1.0 - std::cos(M_PI * (from_end + 0.5) / t.edge)) : 1.0;
-    t.h[j] = h;
-    t.sum_h += h, t.sum_h2 += h * h, h4 += h * h * h * h;
-    if (j > 0) t.sum_dh2 += (h - t.h[j - 1]) * (h - t.h[j - 1]);
-  }
-  t.variance_factor = n * h4 / (t.sum_h2 * t.sum_h2);
-  return t;
 }
 
 // Frequencies of a record of n blocks: ordinates one by one up to k = 200 (the slow terms live
@@ -102,24 +109,23 @@ Periodogram periodogram_of_block_differences(const PhaseSeries& s, long m) {
   // The mean removed is the taper-weighted one: it takes out a rate ramp R (a constant R tau_b in
   // d) and, unlike the plain mean (ybar_n - ybar_0) / n, carries almost no noise of the end
   // values, so it does not leak that floor back in through the taper.
-  const Taper taper = split_cosine_bell(n);
-  std::vector<double> d(n);
+  p.taper = split_cosine_bell_sums(n);
+  std::vector<double> d(n), h(n);
   double sum_hd = 0.0;
   for (long j = 0; j < n; ++j) {
     // ybar_{j+1} - ybar_j from the phase: the second difference over a block, / tau_b.
     d[j] = (s.x[(j + 2) * m] - 2.0 * s.x[(j + 1) * m] + s.x[j * m]) / p.tau_b;
-    sum_hd += taper.h[j] * d[j];
+    h[j] = split_cosine_bell(j, n, p.taper.edge);
+    sum_hd += h[j] * d[j];
   }
-  p.taper_variance_factor = taper.variance_factor;
-  p.weighted_mean = sum_hd / taper.sum_h;
-  p.sum_h = taper.sum_h, p.sum_h2 = taper.sum_h2, p.sum_dh2 = taper.sum_dh2, p.edge = taper.edge;
-  for (long j = 0; j < n; ++j) d[j] = (d[j] - p.weighted_mean) * taper.h[j];
+  p.weighted_mean = sum_hd / p.taper.sum_h;
+  for (long j = 0; j < n; ++j) d[j] = (d[j] - p.weighted_mean) * h[j];
   Eigen::FFT<double> fft;
   std::vector<std::complex<double>> spec;
   fft.fwd(spec, d);
   bin_frequencies(n, p, [&](long lo, long hi) {
     double sum = 0.0;
-    for (long i = lo; i < hi; ++i) sum += std::norm(spec[i]) / taper.sum_h2;
+    for (long i = lo; i < hi; ++i) sum += std::norm(spec[i]) / p.taper.sum_h2;
     return sum;
   });
   double total = 0.0;
@@ -261,7 +267,7 @@ Eigen::MatrixXd fisher_covariance(const Model& mod, const Periodogram& p, const 
   const Eigen::MatrixXd info = g.transpose() * g;
   const Eigen::MatrixXd cov = info.completeOrthogonalDecomposition().pseudoInverse();
   // Tapered ordinates carry less information than the count says (about 12 % more variance here).
-  return p.taper_variance_factor * scale.cwiseInverse().asDiagonal() * cov * scale.cwiseInverse().asDiagonal();
+  return p.taper.variance_factor * scale.cwiseInverse().asDiagonal() * cov * scale.cwiseInverse().asDiagonal();
 }
 
 // Profile likelihood of term j's squared coefficient: the maximum over the other terms (and the
@@ -327,19 +333,36 @@ std::pair<double, double> profile_interval(const Model& mod, const Periodogram& 
 // sum h^2); every other term's d is a difference, which summation by parts turns into the block
 // means weighted by the taper's steps (S_ybar near frequency 0 times sum (dh)^2).
 void ramp_estimate(const Model& mod, const Periodogram& p, const Eigen::VectorXd& c, double& r, double& sigma_r) {
-  const double nu_edge = 1.0 / static_cast<double>(p.edge), s_edge = std::sin(M_PI * nu_edge);
+  const double nu_edge = 1.0 / static_cast<double>(p.taper.edge), s_edge = std::sin(M_PI * nu_edge);
   double var = 0.0;
   for (size_t j = 0; j < mod.terms.size(); ++j) {
     if (mod.terms[j] == ModelTerm::kK) {
-      var += c(j) * block_difference_density(ModelTerm::kK, 0.0, p.tau_b) * p.sum_h2;
+      var += c(j) * block_difference_density(ModelTerm::kK, 0.0, p.tau_b) * p.taper.sum_h2;
     } else {
       const double s_ybar =
           block_difference_density(mod.terms[j], nu_edge, p.tau_b, mod.gm_t_s) / (4.0 * s_edge * s_edge);
-      var += c(j) * s_ybar * p.sum_dh2;
+      var += c(j) * s_ybar * p.taper.sum_dh2;
     }
   }
   r = std::fabs(p.weighted_mean) / p.tau_b;
-  sigma_r = std::sqrt(std::max(0.0, var)) / p.sum_h / p.tau_b;
+  sigma_r = std::sqrt(std::max(0.0, var)) / p.taper.sum_h / p.tau_b;
+}
+
+// The member of `b` (const or not) that holds the bound of term t: N, B, K or GM sigma; else null.
+template <typename Bounds>
+decltype(&std::declval<Bounds&>().n) bound_slot(Bounds& b, ModelTerm t) {
+  switch (t) {
+    case ModelTerm::kN:
+      return &b.n;
+    case ModelTerm::kB:
+      return &b.b;
+    case ModelTerm::kK:
+      return &b.k;
+    case ModelTerm::kGaussMarkov:
+      return &b.gm_sigma;
+    default:
+      return nullptr;
+  }
 }
 
 }  // namespace
@@ -421,7 +444,7 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
     t.shape_sigma = 0.0;
     set_term_interval(t, sol.c(j), sigma_c[j], z);
     // The tapered likelihood is sharper than the information it holds by the taper's variance factor.
-    const auto [lo, hi] = profile_interval(mod, p, sol, j, 0.5 * z * z * p.taper_variance_factor, sigma_c[j]);
+    const auto [lo, hi] = profile_interval(mod, p, sol, j, 0.5 * z * z * p.taper.variance_factor, sigma_c[j]);
     t.lo = std::sqrt(lo);
     t.hi = std::sqrt(hi);
   }
@@ -486,7 +509,7 @@ RelativeBounds whittle_cramer_rao(const NoiseLevels& truth, double tau0_s, long 
   const long n = smooth_length(blocks - 1);
   p.blocks = n;
   // The taper's variance factor depends on its shape only (1.12 beyond a few hundred blocks).
-  p.taper_variance_factor = split_cosine_bell(std::min(n, 100000L)).variance_factor;
+  p.taper.variance_factor = split_cosine_bell_sums(std::min(n, 100000L)).variance_factor;
   bin_frequencies(n, p, [](long, long) { return 0.0; });
   Model mod;
   std::vector<double> c;
@@ -513,45 +536,11 @@ RelativeBounds whittle_cramer_rao(const NoiseLevels& truth, double tau0_s, long 
   RelativeBounds out;
   for (size_t j = 0; j < c.size(); ++j) {
     const double rel = 0.5 * std::sqrt(std::max(0.0, cov(j, j))) / c[j];  // sd(sqrt c)/sqrt c
-    switch (mod.terms[j]) {
-      case ModelTerm::kN:
-        out.n = rel;
-        break;
-      case ModelTerm::kB:
-        out.b = rel;
-        break;
-      case ModelTerm::kK:
-        out.k = rel;
-        break;
-      case ModelTerm::kGaussMarkov:
-        out.gm_sigma = rel;
-        break;
-      default:
-        break;
-    }
+    if (double* slot = bound_slot(out, mod.terms[j])) *slot = rel;
   }
   if (gm_index >= 0) out.gm_t = std::sqrt(std::max(0.0, cov(c.size(), c.size())));
   return out;
 }
-
-namespace {
-
-double bound_of(const RelativeBounds& b, ModelTerm t) {
-  switch (t) {
-    case ModelTerm::kN:
-      return b.n;
-    case ModelTerm::kB:
-      return b.b;
-    case ModelTerm::kK:
-      return b.k;
-    case ModelTerm::kGaussMarkov:
-      return b.gm_sigma;
-    default:
-      return 0.0;
-  }
-}
-
-}  // namespace
 
 RecordInformation record_information(const NoiseFit& fit, double tau0_s, long samples, double block_s, double target) {
   RecordInformation info;
@@ -567,9 +556,10 @@ RecordInformation record_information(const NoiseFit& fit, double tau0_s, long sa
   // bisection in ln(length) between 100 blocks and 1000 h.
   for (ModelTerm t : {ModelTerm::kN, ModelTerm::kB, ModelTerm::kK, ModelTerm::kGaussMarkov}) {
     double& hours = t == ModelTerm::kN ? info.hours_n : t == ModelTerm::kK ? info.hours_k : info.hours_b;
-    if (!fit[t].in_model || !fit[t].resolved || !(bound_of(info.now, t) > 0)) continue;
+    if (!fit[t].in_model || !fit[t].resolved || !(*bound_slot(info.now, t) > 0)) continue;
     auto sd_at = [&](double seconds) {
-      return bound_of(whittle_cramer_rao(lv, tau0_s, static_cast<long>(seconds / tau0_s), block_s), t);
+      const RelativeBounds b = whittle_cramer_rao(lv, tau0_s, static_cast<long>(seconds / tau0_s), block_s);
+      return *bound_slot(b, t);
     };
     double lo = 100.0 * block, hi = 1000.0 * 3600.0;
     if (sd_at(hi) > target) {
