@@ -1,6 +1,7 @@
 #include "estimator/options.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <ostream>
 #include <stdexcept>
 
@@ -99,6 +100,60 @@ std::vector<std::string> resolve_model(const std::string& model, const std::vect
   for (const auto& d : drop)
     for (const auto& e : expand(d)) std::erase(effects, e);
   return effects;
+}
+
+}  // namespace ldv::est
+
+namespace ldv::est {
+namespace {
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument("filter option " + what);
+}
+bool finite_in(const Vec3& v, double lo, double hi) { return v.allFinite() && v.minCoeff() >= lo && v.maxCoeff() <= hi; }
+bool finite_in(double v, double lo, double hi) { return std::isfinite(v) && v >= lo && v <= hi; }
+
+void check_block(const BlockOptions& b, const std::string& name) {
+  require(b.init.allFinite(), name + ".init: not finite");
+  require(finite_in(b.init_std, 0.0, 1e9), name + ".init_std: must be >= 0 and finite");
+  require(finite_in(b.sigma, 0.0, 1e9), name + ".sigma: must be >= 0 and finite");
+  require(finite_in(b.rw_density, 0.0, 1e9), name + ".rw_density: must be >= 0 and finite");
+  require(finite_in(b.corr_time_s, 1e-6, 1e12), name + ".corr_time_s: must be > 0 s and finite");
+}
+
+}  // namespace
+
+void FilterOptions::check() const {
+  require(finite_in(arw_rad_per_sqrt_s, 0.0, 1.0), "arw: must be in [0, 1] rad/sqrt(s)");
+  require(finite_in(vrw_mps_per_sqrt_s, 0.0, 100.0), "vrw: must be in [0, 100] m/s/sqrt(s)");
+  const std::pair<const BlockOptions*, const char*> blocks[] = {
+      {&gyro_bias, "gyro_bias"},         {&accel_bias, "accel_bias"},
+      {&gyro_scale, "gyro_scale"},       {&accel_scale, "accel_scale"},
+      {&gyro_misalignment, "gyro_misalignment"}, {&accel_misalignment, "accel_misalignment"},
+      {&g_sensitivity, "g_sensitivity"}, {&lever_arm, "lever_arm"},
+      {&gravity_anomaly, "gravity_anomaly"}, {&gnss_position_bias, "gnss_position_bias"}};
+  for (const auto& [b, name] : blocks) check_block(*b, name);
+  require(lever_arm.init.norm() <= 1000.0, "lever_arm: longer than 1000 m");
+  require(finite_in(time_offset_init_s, -100.0, 100.0), "time_offset: must be within +-100 s");
+  require(finite_in(time_offset_std_s, 0.0, 100.0), "time_offset std: must be in [0, 100] s");
+  for (const MovingBiasOptions* m : {&gyro_moving_bias, &accel_moving_bias}) {
+    require(finite_in(m->constant_std, 0.0, 1e9) && finite_in(m->gm_sigma, 0.0, 1e9) &&
+                finite_in(m->rw_density, 0.0, 1e9) && finite_in(m->ramp_rate_std, 0.0, 1e9) &&
+                finite_in(m->gm_corr_time_s, 1e-6, 1e12),
+            "moving_bias: every term must be >= 0 and finite, the correlation time > 0");
+  }
+  require(input_gyro_bias_rad_s.allFinite(), "input gyro bias: not finite");
+  require(finite_in(cov_period_s, 1e-6, 60.0), "cov_period_s: must be in (0, 60] s");
+  require(gate_probability > 0.0 && gate_probability < 1.0, "gate_probability: must be in (0, 1)");
+  require(gate_max_consecutive_rejects >= 1, "gate_max_consecutive_rejects: must be >= 1");
+  require(finite_in(history_s, 0.0, 3600.0), "history_s: must be in [0, 3600] s");
+  require(finite_in(align_speed_mps, 1e-3, 1e3), "align_speed_mps: must be in (0, 1000] m/s");
+  require(align_hypotheses <= 360, "align_hypotheses: at most 360");
+  require(finite_in(zupt.window_s, 1e-3, 60.0) && finite_in(zupt.f_std_mps2, 0.0, 100.0) &&
+              finite_in(zupt.omega_max_rad_s, 0.0, 10.0) && finite_in(zupt.speed_max_mps, 0.0, 100.0) &&
+              finite_in(zupt.f_horizontal_max_mps2, 0.0, 100.0) && finite_in(zupt.period_s, 0.0, 60.0) &&
+              finite_in(zupt.std_mps, 1e-6, 100.0),
+          "zupt: a setting is not finite or out of range");
 }
 
 }  // namespace ldv::est

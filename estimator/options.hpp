@@ -65,6 +65,12 @@ struct FilterOptions {
   Vec3 input_gyro_bias_rad_s = Vec3::Zero();
   double cov_period_s = 0.1;         // covariance propagated at least this often (and at each measurement)
   double gate_probability = 0.9999;  // chi-square gate on the NIS of each 3-D measurement
+  // Beyond the gate: robust (default) keeps the measurement with its noise inflated (kalman_update.hpp),
+  // and a step of the measured quantity confirmed by consecutive measurements beyond the gate that agree
+  // for step_confirm_s is taken up at once (covariance opened). Not robust (ldv.kfgins_compatible,
+  // --kfgins-compatible): rejected, and accepted by force after gate_max_consecutive_rejects, as KF-GINS.
+  bool robust_update = true;
+  double step_confirm_s = 1.0;
   int gate_max_consecutive_rejects = 10;  // then accept (re-synchronise) and flag
   bool use_gnss_velocity = true;
   ZuptOptions zupt;
@@ -76,6 +82,9 @@ struct FilterOptions {
 
   FilterOptions();
   void print(std::ostream& out) const;
+  // Throws std::invalid_argument naming the first setting that is not finite or outside its physical
+  // range (a NaN lever arm would otherwise freeze the filter's time for thousands of rows).
+  void check() const;
 };
 
 // Effect names of a named model (ins15, kfgins21, geoldv51) after --add/--drop; throws

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include <Eigen/Cholesky>
 
@@ -17,6 +18,18 @@ namespace {
 constexpr double kSnapshotPeriod_s = 0.2;
 constexpr double kHealthPeriod_s = 1.0;
 constexpr double kSplitTolerance_s = 1e-6;
+// A measurement the robust update kept with its noise inflated more than this counts as rejected.
+constexpr double kMaxNoiseScaleUsed = 4.0;
+// Holding the IMU's rates over missing samples is sound for a few samples, not for a hole: beyond this
+// the state coasts at its velocity and the covariance opens by what a land vehicle can do meanwhile.
+constexpr double kMaxBridgedImuGap_s = 1.0;
+constexpr double kGapAccelStd_mps2 = 2.0;      // unknown acceleration during a gap
+constexpr double kGapTurnRateStd_rad_s = 0.1;  // unknown rotation during a gap
+constexpr double kGapMaxDeadReckoning_s = 10.0;  // beyond: the velocity is not carried on, the position held
+// Caps that keep the linearised filter meaningful after a long hole: the next fixes pull the state in
+// (a land vehicle stays about level; its heading is what is lost).
+constexpr double kGapMaxPosStd_m = 1e3, kGapMaxVelStd_mps = 10.0, kGapMaxTiltStd_rad = 2.0 * kDegToRad,
+                 kGapMaxYawStd_rad = 30.0 * kDegToRad;
 // A continuing ZUPT whose innovation exceeds the 95 % chi-square point (3 dof) is taken as motion:
 // skipping one at a real stop costs nothing (the next comes a period later), applying one while the
 // vehicle creeps off costs meters.
@@ -39,7 +52,7 @@ bool finite(const NavState& s) {
 }  // namespace
 
 NavFilter::NavFilter(FilterOptions options)
-    : opt_(std::move(options)), layout_(resolve_model(opt_.model, opt_.add, opt_.drop), opt_) {
+    : opt_((options.check(), std::move(options))), layout_(resolve_model(opt_.model, opt_.add, opt_.drop), opt_) {
   m_ = layout_.effect_dim();
   prior_std_ = Eigen::VectorXd::Zero(m_);
   q_c_ = Eigen::VectorXd::Zero(m_);
@@ -57,6 +70,13 @@ NavFilter::NavFilter(FilterOptions options)
 }
 
 void NavFilter::initialize(const NavState& s, const NavStd& std) {
+  // A NaN or absurd initial state would freeze the filter (every step rejected as non-finite).
+  if (!finite(s) || std::abs(s.pos.lat_rad) > 0.5 * M_PI || s.pos.h_m < -1.2e4 || s.pos.h_m > 1e6 ||
+      s.v_n_mps.norm() > 1e3 || !std::isfinite(s.t_s))
+    throw std::invalid_argument("initial state: not finite or out of range (|lat| <= 90 deg, h in [-12, 1000] km, |v| <= 1000 m/s)");
+  if (!std.pos_ned_m.allFinite() || !std.vel_n_mps.allFinite() || !std.att_rad.allFinite() ||
+      std.pos_ned_m.minCoeff() < 0 || std.vel_n_mps.minCoeff() < 0 || std.att_rad.minCoeff() < 0)
+    throw std::invalid_argument("initial state std: must be >= 0 and finite");
   c_ = Core{};
   c_.nav = s;
   c_.x_eff = Eigen::VectorXd::Zero(m_);
@@ -118,22 +138,55 @@ void NavFilter::take_snapshot() {
   while (snapshots_.size() > 1 && snapshots_[1].nav.t_s < c_.nav.t_s - opt_.history_s) snapshots_.pop_front();
 }
 
+void NavFilter::coast_over_imu_gap(double t_end_s) {
+  flush_covariance();
+  const double gap_s = t_end_s - c_.nav.t_s;
+  NavState s = c_.nav;
+  s.pos = earth::offset_ned(s.pos, s.v_n_mps * std::min(gap_s, kGapMaxDeadReckoning_s));
+  s.t_s = t_end_s;
+  const auto grown = [](double rate, double gap, double cap) { return std::pow(std::min(rate * gap, cap), 2); };
+  const double var_pos = grown(0.5 * kGapAccelStd_mps2 * gap_s, gap_s, kGapMaxPosStd_m);
+  const double var_vel = grown(kGapAccelStd_mps2, gap_s, kGapMaxVelStd_mps);
+  for (int i = 0; i < 3; ++i) {
+    c_.P(kPos + i, kPos + i) += var_pos;
+    c_.P(kVel + i, kVel + i) += var_vel;
+    c_.P(kAtt + i, kAtt + i) += grown(kGapTurnRateStd_rad_s, gap_s, i < 2 ? kGapMaxTiltStd_rad : kGapMaxYawStd_rad);
+  }
+  c_.nav = s;
+  c_.mech.reset(s);
+}
+
 void NavFilter::process_imu(const ImuIncrement& raw) {
   const double t_end = raw.t_s;
   const double t0 = c_.nav.t_s;
   if (t_end <= t0 + 1e-9) return;  // before the initial epoch
-  ImuIncrement rem = raw;
-  const double t_start = t_end - raw.dt_s;
-  if (t_start < t0 - 1e-9) rem = scaled(raw, (t_end - t0) / raw.dt_s);  // initialised inside this interval
-  if (t_start > t0 + 1e-9) {
-    // Missing samples: integrate the increment over the whole gap (its rate held).
-    if (t_end - t0 > 5.0 * raw.dt_s) {
+  ImuIncrement in = raw;
+  if (in.dt_s > kMaxBridgedImuGap_s || t_end - in.dt_s - t0 > kMaxBridgedImuGap_s) {
+    // A hole in the data (an increment said to span the hole, or samples missing before it): coast to
+    // one regular interval before this sample, then integrate the sample over that interval only.
+    const double interval_s =
+        c_.imu_interval_s > 0.0 ? c_.imu_interval_s : std::min(in.dt_s, kMaxBridgedImuGap_s);
+    if (in.dt_s > interval_s) in = scaled(raw, interval_s / raw.dt_s);
+    in.dt_s = interval_s;
+    c_.status |= kStatusImuGap;
+    ++faults_.imu_gaps;
+    if (t_end - interval_s > t0) coast_over_imu_gap(t_end - interval_s);
+  } else {
+    c_.imu_interval_s = in.dt_s;
+  }
+  ImuIncrement rem = in;
+  const double t_start = t_end - in.dt_s;
+  const double t_from = c_.nav.t_s;
+  if (t_start < t_from - 1e-9) rem = scaled(in, (t_end - t_from) / in.dt_s);  // initialised inside this interval
+  if (t_start > t_from + 1e-9) {
+    // A few missing samples: integrate the increment over the whole gap (its rate held).
+    if (t_end - t_from > 5.0 * in.dt_s) {
       c_.status |= kStatusImuGap;
       ++faults_.imu_gaps;
     }
-    rem = scaled(raw, (t_end - t0) / raw.dt_s);
+    rem = scaled(in, (t_end - t_from) / in.dt_s);
   }
-  rem.dt_s = t_end - t0;
+  rem.dt_s = t_end - t_from;
 
   while (!pending_.empty()) {
     const double t_m = pending_.front().fix.t_s - c_.model.time_offset_s;
@@ -402,7 +455,12 @@ void NavFilter::apply_measurement(const Measurement& m) {
   // left repeats itself (the innovation changes by the drift since), a lone outlier arriving at that moment
   // does not.
   const Vec3& previous = c_.last_rejected_y[kind];
-  const bool due = c_.consecutive_rejects[kind] >= opt_.gate_max_consecutive_rejects;
+  // Robust: a step is confirmed by two or more measurements beyond the gate in a row, spanning
+  // step_confirm_s (a spike of multipath is shorter); KF-GINS: after a count of rejections.
+  const bool due = opt_.robust_update
+                       ? c_.consecutive_rejects[kind] >= 2 &&
+                             c_.nav.t_s - c_.first_reject_t_s[kind] >= opt_.step_confirm_s - kSplitTolerance_s
+                       : c_.consecutive_rejects[kind] >= opt_.gate_max_consecutive_rejects;
   const bool agrees = (m.y - previous).norm() <= 0.5 * previous.norm() + 3.0 * std::sqrt(m.R.trace());
   const bool force = due && agrees;
   InnovationRecord rec;
@@ -425,21 +483,27 @@ void NavFilter::apply_measurement(const Measurement& m) {
       c_.P(kAtt + 1, kAtt + 1) += tilt_rad * tilt_rad;
     }
   }
-  const bool ok = kalman_update(c_.P, m, gate_, force, rec, dx_, want ? &K_ : nullptr);
-  if (ok) {
-    correct(dx_);
-    if (force) {
-      c_.status |= kStatusGateResync;
-      ++faults_.gate_resyncs;
-    }
+  const bool ok = kalman_update(c_.P, m, {gate_, opt_.robust_update, force}, rec, dx_, want ? &K_ : nullptr);
+  const bool beyond_gate = !force && rec.nis > gate_;
+  if (ok) correct(dx_);
+  if (ok && force) {
+    c_.status |= kStatusGateResync;
+    ++faults_.gate_resyncs;
+  }
+  // Used: within the gate, forced, or kept by the robust update with at least a quarter of its weight.
+  const bool used = ok && rec.noise_scale <= kMaxNoiseScaleUsed;
+  if (ok && beyond_gate) ++faults_.downweighted;
+  if (used && m.kind != MeasurementKind::kZeroVelocity) {
+    c_.last_gnss_t_s = c_.nav.t_s;
+    c_.status &= ~(kStatusGnssRejected | kStatusGateResync);
+  }
+  if (!beyond_gate) {
     c_.consecutive_rejects[kind] = 0;
-    if (m.kind != MeasurementKind::kZeroVelocity) {
-      c_.last_gnss_t_s = c_.nav.t_s;
-      c_.status &= ~(kStatusGnssRejected | kStatusGateResync);
-    }
   } else {
-    ++c_.consecutive_rejects[kind];
+    if (c_.consecutive_rejects[kind]++ == 0) c_.first_reject_t_s[kind] = c_.nav.t_s;
     if (!due) c_.last_rejected_y[kind] = m.y;  // an outlier held back must not become the reference
+  }
+  if (!used) {
     ++faults_.gate_rejections;
     if (m.kind != MeasurementKind::kZeroVelocity) c_.status |= kStatusGnssRejected;
   }

@@ -83,14 +83,17 @@ class NavFilter {
     double last_zupt_t_s = -1e300;
     double last_gnss_t_s = -1e300;
     double last_health_t_s = -1e300;
-    int consecutive_rejects[3] = {0, 0, 0};
+    int consecutive_rejects[3] = {0, 0, 0};   // measurements beyond the gate in a row, per kind
+    double first_reject_t_s[3] = {0, 0, 0};     // epoch of the first of them
     Vec3 last_rejected_y[3] = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};  // innovation of the last rejection
     std::uint32_t status = 0;
+    double imu_interval_s = 0.0;  // the last regular IMU interval (what one increment normally spans)
     std::deque<Fix> applied;  // fixes applied within the history horizon (what a snapshot contains)
   };
 
   void process_imu(const ImuIncrement& raw);
   void propagate_sample(const ImuIncrement& raw_part);
+  void coast_over_imu_gap(double t_end_s);
   void flush_covariance();
   void apply_gnss(const Fix& fix);
   void enqueue(const Fix& fix);

@@ -17,6 +17,9 @@ struct InnovationRecord {
   Mat3 S = Mat3::Zero();           // innovation covariance H P H^T + R
   double nis = 0.0;                // innovation^T S^-1 innovation
   bool accepted = true;
+  // The factor on R the update used: 1 within the gate; > 1 for a measurement beyond it that the robust
+  // update kept with less weight (its effective S is H P H^T + noise_scale R).
+  double noise_scale = 1.0;
   bool replayed = false;           // recomputed while re-processing a late measurement
 };
 

@@ -1,6 +1,9 @@
 #include "estimator/run/alignment_options_from.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace ldv::est {
 AlignmentOptions alignment_options_from(const FilterOptions& fo) {
@@ -11,6 +14,12 @@ AlignmentOptions alignment_options_from(const FilterOptions& fo) {
   ao.accel_bias_std_mps2 = fo.accel_bias.init_std.maxCoeff();
   ao.lever_arm_b_m = fo.lever_arm.init;
   ao.speed_min_mps = fo.align_speed_mps;
+  // Each hypothesis is a filter run side by side: more than one per degree is never useful and a huge
+  // count exhausts memory (every path to the alignment passes here).
+  if (fo.align_hypotheses > 360)
+    throw std::invalid_argument("align_hypotheses " + std::to_string(fo.align_hypotheses) + ": at most 360");
+  if (!(std::isfinite(fo.align_speed_mps) && fo.align_speed_mps > 0))
+    throw std::invalid_argument("align_speed_mps must be > 0 and finite");
   ao.course_hypotheses = std::max(1, fo.align_hypotheses);
   return ao;
 }

@@ -56,6 +56,9 @@ FilterOptions options_from_kfgins(const KfGinsConfig& cfg) {
   o.cov_period_s = ldv_key<double>(cfg, "cov_period_s", o.cov_period_s);
   o.gate_probability = ldv_key<double>(cfg, "gate_probability", o.gate_probability);
   o.use_gnss_velocity = ldv_key<bool>(cfg, "use_gnss_velocity", o.use_gnss_velocity);
+  // KF-GINS's gate (reject, then force after a count) instead of the robust update.
+  o.robust_update = !ldv_key<bool>(cfg, "kfgins_compatible", !o.robust_update);
+  o.step_confirm_s = ldv_key<double>(cfg, "step_confirm_s", o.step_confirm_s);
   o.zupt.enabled = ldv_key<bool>(cfg, "zupt", o.zupt.enabled);
   o.history_s = ldv_key<double>(cfg, "history_s", 0.0);  // offline: fixes are never late
   o.align_speed_mps = ldv_key<double>(cfg, "align_speed_mps", o.align_speed_mps);

@@ -2,7 +2,7 @@
 // Zero-velocity update: when the static detector fires, the IMU velocity is zero (z = 0, y = v_hat).
 // StaticDetector: over a sliding window, the std of |f| and the norm of the mean angular rate are
 // both small, against thresholds that include the sensor's own white noise.
-#include <vector>
+#include <deque>
 
 #include "estimator/ins/nav_state.hpp"
 #include "estimator/update/measurement.hpp"
@@ -21,7 +21,10 @@ class StaticDetector {
                  double arw_rad_per_sqrt_s = 0.0)
       : window_s_(window_s), f_std_(f_std_mps2), w_max_(omega_max_rad_s), vrw_(vrw_mps_per_sqrt_s),
         arw_(arw_rad_per_sqrt_s) {}
-  // One compensated sample (mean rate and specific force over dt); returns whether static now.
+  // One compensated sample (mean rate and specific force over dt); returns whether static now. The window
+  // holds window_s / (mean dt) samples, re-sized as the rate goes, at most kMaxSamples: one odd interval
+  // (two samples 3 ns apart) cannot size it.
+  static constexpr size_t kMaxSamples = 1 << 16;
   bool add(double dt_s, const Vec3& omega_ib_b, const Vec3& f_b);
   bool is_static() const { return static_; }
 
@@ -29,11 +32,12 @@ class StaticDetector {
   struct Sample {
     double f = 0.0;
     Vec3 w = Vec3::Zero();
+    double dt_s = 0.0;
   };
+  void reset();
   double window_s_, f_std_, w_max_, vrw_, arw_;
-  std::vector<Sample> ring_;
-  size_t head_ = 0, count_ = 0;
-  double sum_f_ = 0, sum_f2_ = 0;
+  std::deque<Sample> window_;
+  double sum_f_ = 0, sum_f2_ = 0, sum_dt_s_ = 0;
   Vec3 sum_w_ = Vec3::Zero();
   bool static_ = false;
 };

@@ -1,7 +1,6 @@
 #include "services/fusion/log_replay.hpp"
 
-#include <lcm/lcm-cpp.hpp>
-
+#include "common/bus/lcm_log_reader.hpp"
 #include "common/bus/message_conversions.hpp"
 #include "common/io/input_error.hpp"
 
@@ -10,26 +9,26 @@ namespace ldv {
 LogReplaySummary replay_fusion_log(const std::string& log_path, FusionEngine& engine,
                                    const std::function<void(const FusionOutput&)>& on_output,
                                    const std::string& imu_channel, const std::string& gnss_channel, bool host_clock_imu) {
-  lcm::LogFile log(log_path, "r");
-  if (!log.good()) throw InputError(log_path, 0, "cannot open LCM log file");
+  LcmLogReader log(log_path);
   LogReplaySummary sum;
   std::vector<FusionOutput> outs;
   double last_arrival_s = 0;
-  while (const lcm::LogEvent* ev = log.readNextEvent()) {
-    const double arrival_s = ev->timestamp * 1e-6;  // logger receive time [us] -> s
+  LcmLogEvent ev;
+  while (log.next(ev)) {
+    const double arrival_s = ev.timestamp_us * 1e-6;  // logger receive time [us] -> s
     last_arrival_s = arrival_s;
-    if (ev->channel == imu_channel) {
+    if (ev.channel == imu_channel) {
       ldv_lcm::imu_sample_t m;
-      if (m.decode(ev->data, 0, ev->datalen) < 0 || !is_valid(m)) {
+      if (m.decode(ev.data.data(), 0, static_cast<int>(ev.data.size())) < 0 || !is_valid(m)) {
         ++sum.malformed;
         continue;
       }
       ++sum.imu_messages;
       if (!host_clock_imu && !has_gps_time(m)) continue;  // as the live service: not on GPS time yet
       engine.on_imu(imu_from_message(m), m.gps_week, arrival_s, outs);
-    } else if (ev->channel == gnss_channel) {
+    } else if (ev.channel == gnss_channel) {
       ldv_lcm::gnss_solution_t m;
-      if (m.decode(ev->data, 0, ev->datalen) < 0 || !is_valid(m)) {
+      if (m.decode(ev.data.data(), 0, static_cast<int>(ev.data.size())) < 0 || !is_valid(m)) {
         ++sum.malformed;
         continue;
       }
@@ -42,6 +41,7 @@ LogReplaySummary replay_fusion_log(const std::string& log_path, FusionEngine& en
     for (const auto& o : outs) on_output(o);
     outs.clear();
   }
+  sum.corrupt_log_events = log.corrupt_events() + log.truncated_events();
   engine.on_idle(last_arrival_s + 1e6, outs);
   for (const auto& o : outs) on_output(o);
   sum.initialisation = engine.initialisation();

@@ -10,6 +10,7 @@ namespace ldv {
 
 struct LogReplaySummary {
   long imu_messages = 0, gnss_messages = 0, malformed = 0, other_messages = 0;
+  long corrupt_log_events = 0;  // events the log reader skipped (bad lengths or sync, a cut last event)
   std::string initialisation;
 };
 

@@ -1,7 +1,8 @@
 #include "toolbox/allan/allan_plot.hpp"
 
+#include "common/plot/gnuplot.hpp"
+
 #include <cmath>
-#include <cstdlib>
 #include <fstream>
 #include <stdexcept>
 
@@ -18,12 +19,6 @@ std::vector<double> model_grid(const ChannelResult& r) {
   const double a = std::log10(r.oadev.front().point.tau_s), b = std::log10(r.oadev.back().point.tau_s);
   for (int i = 0; i <= 200; ++i) g.push_back(std::pow(10.0, a + (b - a) * i / 200.0));
   return g;
-}
-
-std::string shell_quote(const std::string& s) {
-  std::string o = "'";
-  for (char c : s) o += (c == '\'') ? std::string("'\\''") : std::string(1, c);
-  return o + "'";
 }
 
 }  // namespace
@@ -60,15 +55,16 @@ void plot_allan(const std::string& png, const std::vector<ChannelResult>& result
   if (!g) throw std::runtime_error("cannot write " + gp);
   g << "# ldv allan plot; re-run with: gnuplot " << gp << "\n"
     << "set terminal pngcairo size " << 640 * cols << "," << 480 * rows << " noenhanced\n"
-    << "set output '" << png << "'\n"
+    << "set output " << plot::gnuplot_literal(png) << "\n"
     << "set logscale xy\nset grid xtics ytics mxtics mytics\nset format y '%.0e'\nset key bottom left font ',8'\n"
     << "set xlabel 'tau [s]'\n";
   if (n > 1) g << "set multiplot layout " << rows << "," << cols << "\n";
   const char* names[] = {"Q", "N", "B", "K", "R", "GM", "sine"};
   for (size_t c = 0; c < n; ++c) {
     const ChannelResult& r = results[c];
-    g << "set title '" << r.name << "'\nset ylabel 'Allan deviation [" << r.unit << "]'\n";
-    g << "plot '" << dat << "' index " << 2 * c << " using 1:2:3:4 with yerrorbars pt 7 ps 0.5 lc rgb 'black' title 'OADEV (68% CI)'";
+    g << "set title " << plot::gnuplot_literal(r.name) << "\nset ylabel "
+      << plot::gnuplot_literal("Allan deviation [" + r.unit + "]") << "\n";
+    g << "plot " << plot::gnuplot_literal(dat) << " index " << 2 * c << " using 1:2:3:4 with yerrorbars pt 7 ps 0.5 lc rgb 'black' title 'OADEV (68% CI)'";
     if (r.fit) {
       g << ", '' index " << 2 * c + 1 << " using 1:2 with lines lw 2 lc rgb 'red' title 'fit total'";
       for (int k = 0; k < 7; ++k) {
@@ -83,8 +79,7 @@ void plot_allan(const std::string& png, const std::vector<ChannelResult>& result
   }
   if (n > 1) g << "unset multiplot\n";
   g.close();
-  const std::string cmd = "gnuplot " + shell_quote(gp) + " 2>&1";
-  if (std::system(cmd.c_str()) != 0) throw std::runtime_error("gnuplot failed on " + gp);
+  if (plot::run_gnuplot(gp, ".") != 0) throw std::runtime_error("gnuplot failed on " + gp);
 }
 
 }  // namespace ldv::allan

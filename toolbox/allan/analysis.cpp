@@ -1,5 +1,7 @@
 #include "toolbox/allan/analysis.hpp"
 
+#include "common/parallel/parallel_for.hpp"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -84,27 +86,20 @@ std::vector<ChannelResult> analyze(const std::vector<PhaseSeries>& channels, con
                                    const Progress& progress) {
   std::vector<ChannelResult> results(channels.size());
   std::vector<std::exception_ptr> errors(channels.size());
-  std::atomic<size_t> next{0};
   std::mutex progress_mutex;
-  auto worker = [&] {
-    for (size_t i; (i = next++) < channels.size();) {
-      try {
-        results[i] = analyze_channel(channels[i], opt);
-        if (progress) {
-          std::lock_guard<std::mutex> lock(progress_mutex);
-          progress("analysed " + channels[i].name);
-        }
-      } catch (...) {
-        errors[i] = std::current_exception();
+  std::vector<size_t> order(channels.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  parallel_for(order, opt.threads, [&](size_t i) {
+    try {
+      results[i] = analyze_channel(channels[i], opt);
+      if (progress) {
+        std::lock_guard<std::mutex> lock(progress_mutex);
+        progress("analysed " + channels[i].name);
       }
+    } catch (...) {
+      errors[i] = std::current_exception();
     }
-  };
-  const int hw = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  const int n_threads = std::min<int>(opt.threads > 0 ? opt.threads : hw, static_cast<int>(channels.size()));
-  std::vector<std::thread> pool;
-  for (int t = 1; t < n_threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
+  });
   for (auto& e : errors) if (e) std::rethrow_exception(e);
   return results;
 }

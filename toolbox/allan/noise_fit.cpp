@@ -253,6 +253,7 @@ Eigen::MatrixXd covariance(const Basis& b, const std::vector<int>& idx, const Da
     if ((b.terms[j] == ModelTerm::kGaussMarkov || b.terms[j] == ModelTerm::kSinusoid) && c[j] > 0) shaped = j;
   }
   const int q = static_cast<int>(idx.size()) + (shaped >= 0 ? 1 : 0);
+  if (q == 0) return Eigen::MatrixXd();  // no free term (every coefficient at its bound)
   Eigen::MatrixXd A(n, q);
   for (int i = 0; i < n; ++i) {
     for (size_t j = 0; j < idx.size(); ++j) A(i, j) = term_avar(b.terms[idx[j]], d.tau[i], b.shapes[idx[j]]);
@@ -315,7 +316,10 @@ void set_term_interval(TermEstimate& t, double c, double sigma_c, double z) {
   }
 }
 
-NoiseFit fit_noise_model(const std::vector<StabilityPoint>& pts, const FitOptions& opt) {
+namespace {
+
+// The fit proper, on deviations of order 1 (see fit_noise_model).
+NoiseFit fit_unit_scale(const std::vector<StabilityPoint>& pts, const FitOptions& opt) {
   Data d;
   for (const auto& p : pts) {
     if (p.edf > 0 && p.point.dev > 0) {
@@ -459,6 +463,66 @@ NoiseFit fit_noise_model(const std::vector<StabilityPoint>& pts, const FitOption
     out.misfit.push_back(dm);
   }
   return out;
+}
+
+}  // namespace
+
+// The generalized LS fit costs O(n^3) in the number of taus (its covariance is n x n): `--taus all` on a
+// 2-minute record (3000 taus) took minutes and GBs. Neighbouring overlapping estimates at dense taus are
+// almost perfectly correlated, so a log-spaced subset of a few hundred carries the same information.
+constexpr size_t kMaxFitPoints = 240;
+
+std::vector<StabilityPoint> thinned_log_spaced(const std::vector<StabilityPoint>& pts, size_t max_points) {
+  if (pts.size() <= max_points) return pts;
+  std::vector<StabilityPoint> sorted = pts;
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [](const StabilityPoint& a, const StabilityPoint& b) { return a.point.tau_s < b.point.tau_s; });
+  std::vector<StabilityPoint> out;
+  const double lo = std::log(sorted.front().point.tau_s), hi = std::log(sorted.back().point.tau_s);
+  double next = lo;
+  const double step = (hi - lo) / static_cast<double>(max_points - 1);
+  for (size_t i = 0; i < sorted.size(); ++i) {
+    if (std::log(sorted[i].point.tau_s) + 1e-12 >= next || i + 1 == sorted.size()) {
+      out.push_back(sorted[i]);
+      next = std::log(sorted[i].point.tau_s) + step;
+    }
+  }
+  return out;
+}
+
+NoiseFit fit_noise_model(const std::vector<StabilityPoint>& pts, const FitOptions& opt) {
+  if (terms_of(opt).empty()) throw std::invalid_argument("noise fit: no noise term to fit (the term list is empty)");
+  // The fit squares the deviations and squares them again in its normal matrix, so data of 1e100 or
+  // 1e-100 would overflow or underflow. Every term is linear in the Allan variance: fit deviations
+  // scaled to a peak of 1 and scale the coefficients back.
+  constexpr double kTauMin_s = 1e-9, kTauMax_s = 1e12;  // ns sampling to decades of data
+  double peak = 0.0;
+  for (const StabilityPoint& p : pts) {
+    if (!std::isfinite(p.point.dev) || !std::isfinite(p.point.tau_s))
+      throw std::invalid_argument("noise fit: the deviation at tau = " + std::to_string(p.point.tau_s) +
+                                  " s is not finite (the data overflow double precision: rescale the input)");
+    if (p.edf > 0 && p.point.dev > 0) {
+      if (p.point.tau_s < kTauMin_s || p.point.tau_s > kTauMax_s)
+        throw std::invalid_argument("noise fit: tau = " + std::to_string(p.point.tau_s) + " s is outside [1e-9, 1e12] s");
+      peak = std::max(peak, p.point.dev);
+    }
+  }
+  if (peak == 0.0) return fit_unit_scale(pts, opt);  // throws: no usable point
+  std::vector<StabilityPoint> scaled = thinned_log_spaced(pts, kMaxFitPoints);
+  for (StabilityPoint& p : scaled) {
+    p.point.dev /= peak;
+    p.interval.lo /= peak;
+    p.interval.hi /= peak;
+  }
+  NoiseFit f = fit_unit_scale(scaled, opt);
+  for (TermEstimate& t : f.terms) {
+    t.value *= peak;
+    t.sigma *= peak;
+    t.lo *= peak;
+    t.hi *= peak;
+  }
+  for (SlopeLine& l : f.slope_lines) l.value *= peak;
+  return f;
 }
 
 }  // namespace ldv::allan

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "common/plot/gnuplot.hpp"
+
 namespace ldv::assess {
 namespace fs = std::filesystem;
 
@@ -30,11 +32,10 @@ std::string GnuplotFigure::render() {
   {
     std::ofstream s(fs::path(dir_) / gp);
     s << "set terminal pngcairo size " << width_px_ << "," << height_px_ << " font 'DejaVu Sans,10'\n"
-      << "set output '" << png << "'\nset grid lc rgb '#dddddd'\nset key outside right top\nset border lw 0.8\n"
+      << "set output " << plot::gnuplot_literal(png) << "\nset grid lc rgb '#dddddd'\nset key outside right top\nset border lw 0.8\n"
       << script_;
   }
-  const std::string cmd = "cd '" + dir_ + "' && gnuplot '" + gp + "' 2> '" + stem_ + ".log'";
-  const int rc = std::system(cmd.c_str());
+  const int rc = plot::run_gnuplot(gp, dir_, stem_ + ".log");
   std::error_code ec;
   const auto size = fs::file_size(fs::path(dir_) / png, ec);
   if (rc != 0 || ec || size == 0) {
@@ -44,19 +45,6 @@ std::string GnuplotFigure::render() {
   }
   fs::remove(fs::path(dir_) / (stem_ + ".log"), ec);
   return png;
-}
-
-std::string gnuplot_text(const std::string& s) {
-  std::string o;
-  for (char c : s) {
-    if (c == '_' || c == '^' || c == '{' || c == '}' || c == '@' || c == '&' || c == '~') o += '\\';
-    if (c == '\'') {
-      o += "''";  // a quote inside a single-quoted gnuplot string
-      continue;
-    }
-    o += c;
-  }
-  return o;
 }
 
 std::vector<size_t> thin_indices(size_t n, size_t max_points) {

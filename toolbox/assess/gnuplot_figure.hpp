@@ -13,7 +13,8 @@ class GnuplotFigure {
 
   // A data block: columns of equal length; returns its file name for use in plot commands.
   std::string add_data(const std::vector<std::vector<double>>& columns);
-  // Script lines after the terminal set-up (set title/xlabel/..., plot ...).
+  // Script lines after the terminal set-up (set title/xlabel/..., plot ...). Any text that comes from
+  // data or users goes in through plot::gnuplot_label / gnuplot_literal (common/plot/gnuplot.hpp).
   void add(const std::string& script_line) { script_ += script_line + "\n"; }
   // Writes the script, runs gnuplot; returns the PNG file name (relative to dir). Throws std::runtime_error
   // with gnuplot's message if it fails or the PNG is empty.
@@ -24,9 +25,6 @@ class GnuplotFigure {
   int width_px_, height_px_, blocks_ = 0;
   std::string script_;
 };
-
-// Text for a gnuplot single-quoted string in enhanced mode: '_' and '^' would become sub/superscripts.
-std::string gnuplot_text(const std::string& s);
 
 // Keeps at most max_points evenly spaced indices of n (plots of long runs stay light).
 std::vector<size_t> thin_indices(size_t n, size_t max_points);

@@ -1,5 +1,8 @@
 #include "toolbox/assess/nav_inputs.hpp"
 
+#include "estimator/calibrate/gnss_velocity_check.hpp"
+
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
@@ -74,11 +77,77 @@ NavInputs load_nav_model(const NavInputArgs& a) {
     in.config.output_path = ".";
   }
   if (a.lever.size() == 3) in.options.lever_arm.init = Vec3(a.lever[0], a.lever[1], a.lever[2]);
+  if (a.kfgins_compatible) in.options.robust_update = false;
   if (!a.model.empty()) in.options.model = a.model;
   in.options.add.insert(in.options.add.end(), a.add.begin(), a.add.end());
   in.options.drop.insert(in.options.drop.end(), a.drop.begin(), a.drop.end());
   return in;
 }
+
+namespace {
+
+// IMU stamps late against GNSS time (a consumer IMU behind a USB or serial buffer): found from the data
+// and taken out before the filter sees them, unless the user set the shift or asked for KF-GINS's behaviour.
+void estimate_and_remove_imu_latency(const NavInputArgs& a, bool shift_given, NavInputs& in) {
+  std::string mode = a.imu_latency;
+  if (mode.empty()) {
+    mode = "auto";
+    const YAML::Node& ldv = in.config.ldv;
+    if (ldv.IsDefined() && ldv.IsMap() && ldv["imu_latency"]) {
+      try {
+        mode = ldv["imu_latency"].as<std::string>();
+      } catch (const YAML::Exception&) {
+        throw InputError(in.config.config_path, ldv["imu_latency"].Mark().line + 1,
+                         "key 'ldv.imu_latency': expected auto or off");
+      }
+    }
+    if (shift_given || a.kfgins_compatible) mode = "off";
+  }
+  if (mode != "auto" && mode != "off")
+    throw InputError(in.config.config_path, 0, "imu_latency '" + mode + "': expected auto or off");
+  if (mode == "off" || in.imu.empty() || in.gnss.empty()) return;
+  in.imu_latency = est::estimate_imu_latency(in.imu, in.gnss);
+  const est::ImuLatencyEstimate& e = in.imu_latency;
+  char note[200];
+  if (!e.valid) {
+    std::snprintf(note, sizeof note, "; IMU latency not estimated (%d turning GNSS intervals)", e.turning_intervals);
+  } else if (e.significant()) {
+    for (ImuIncrement& s : in.imu) s.t_s -= e.lag_s;
+    in.imu_latency_applied = true;
+    std::snprintf(note, sizeof note, "; IMU stamps late by %.1f +- %.1f ms (found from the turns, taken out)",
+                  1e3 * e.lag_s, 1e3 * e.sigma_s);
+  } else {
+    std::snprintf(note, sizeof note, "; IMU latency %.1f +- %.1f ms (not significant, not applied)", 1e3 * e.lag_s,
+                  1e3 * e.sigma_s);
+  }
+  in.imu_note += note;
+}
+
+// GNSS velocities are fused only where they agree with the positions, unless the configuration says
+// (ldv.use_gnss_velocity) or KF-GINS's behaviour is asked for.
+void decide_gnss_velocity_use(const NavInputArgs& a, NavInputs& in) {
+  const YAML::Node& ldv = in.config.ldv;
+  const bool configured = ldv.IsDefined() && ldv.IsMap() && ldv["use_gnss_velocity"];
+  const bool any_velocity =
+      std::any_of(in.gnss.begin(), in.gnss.end(), [](const GnssFix& f) { return f.has_velocity; });
+  if (configured || a.kfgins_compatible || !any_velocity || !in.options.use_gnss_velocity) return;
+  const est::GnssVelocityCheck c = est::check_gnss_velocity(in.gnss);
+  char note[220];
+  if (c.consistent()) {
+    std::snprintf(note, sizeof note, "GNSS velocity used (agrees with the positions: misfit %.1fx its sigma^2 over %d fixes)",
+                  c.normalised_mse, c.compared);
+  } else {
+    in.options.use_gnss_velocity = false;
+    std::snprintf(note, sizeof note,
+                  "GNSS velocity not used: misfit %.1fx its stated sigma^2 against the positions over %d fixes "
+                  "(best aligned %.0f ms late: %.1fx%s); positions only",
+                  c.normalised_mse, c.compared, 1e3 * c.best_lag_s, c.normalised_mse_at_lag,
+                  c.lagged() ? ", a significant lag" : "");
+  }
+  in.gnss_note = note;
+}
+
+}  // namespace
 
 NavInputs load_nav_inputs(const NavInputArgs& a) {
   NavInputs in = load_nav_model(a);
@@ -147,6 +216,8 @@ NavInputs load_nav_inputs(const NavInputArgs& a) {
     in.gnss = read_kfgins_gnss(gnss_path);
   }
   in.description += " + " + gnss_path;
+  estimate_and_remove_imu_latency(a, imu_time_shift_s != 0.0, in);
+  decide_gnss_velocity_use(a, in);
   return in;
 }
 

@@ -22,6 +22,7 @@
 
 #include "common/formats/kfgins_config.hpp"
 #include "common/formats/nav_types.hpp"
+#include "estimator/calibrate/imu_latency.hpp"
 #include "estimator/options.hpp"
 
 namespace ldv::assess {
@@ -34,6 +35,11 @@ struct NavInputArgs {
   std::string model;
   std::vector<std::string> add, drop;
   std::vector<double> lever;       // x y z [m] FRD
+  bool kfgins_compatible = false;  // KF-GINS's gate instead of the robust update (FilterOptions::robust_update)
+  // IMU time-tag latency: "auto" estimates it from the gyros and the GNSS track and takes it out when it
+  // is significant (estimator/calibrate/imu_latency.hpp); "off". Empty: ldv.imu_latency, else auto (off
+  // with --kfgins-compatible or a given imu_time_shift_s).
+  std::string imu_latency;
   // The tagged CSV's axes into front-right-down: each entry is +-1..3 (device axis, sign), e.g. the
   // walk's x-forward, y-left, z-up device: {1, -2, -3}.
   std::vector<int> csv_axes = {1, 2, 3};
@@ -51,6 +57,10 @@ struct NavInputs {
   std::string description;  // one line for the log
   std::string imu_note;     // what the IMU reader skipped or assumed
   int gps_week = -1;        // from a .pos file, else -1
+  est::ImuLatencyEstimate imu_latency;  // when estimated (NavInputArgs::imu_latency); applied if significant()
+  bool imu_latency_applied = false;
+  // What was decided about the GNSS velocities (estimator/calibrate/gnss_velocity_check.hpp), "" if none.
+  std::string gnss_note;
 };
 
 // The configuration and the filter options with the command line's model changes, no data read (the

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "common/geo/earth_model.hpp"
 
@@ -39,6 +41,19 @@ std::vector<TrackMotion> track_motion(const std::vector<GnssFix>& g) {
 
 std::vector<OutageWindow> plan_outages(const std::vector<GnssFix>& gnss, const std::vector<double>& lengths_s,
                                        double t_end_s, const OutagePlanOptions& o) {
+  // Every loop below advances by length + recovery (or by max_wait): a NaN, zero or negative value would
+  // plan outages forever.
+  auto require = [](bool ok, const std::string& what) {
+    if (!ok) throw std::invalid_argument("outage plan: " + what);
+  };
+  for (const double length : lengths_s)
+    require(std::isfinite(length) && length > 0.0, "outage length " + std::to_string(length) + " s: must be > 0 and finite");
+  require(std::isfinite(o.recovery_s) && o.recovery_s >= 0.0, "recovery must be >= 0 s and finite");
+  require(std::isfinite(o.converge_s) && o.converge_s >= 0.0, "convergence time must be >= 0 s and finite");
+  require(std::isfinite(o.max_wait_s) && o.max_wait_s > 0.0, "maximum wait must be > 0 s and finite");
+  require(std::isfinite(o.min_speed_mps) && o.min_speed_mps >= 0.0, "minimum speed must be >= 0 m/s and finite");
+  require(std::isfinite(o.manoeuvre_accel_mps2) && o.manoeuvre_accel_mps2 >= 0.0,
+          "manoeuvre acceleration must be >= 0 m/s^2 and finite");
   std::vector<OutageWindow> plan;
   if (gnss.size() < 3) return plan;
   const std::vector<TrackMotion> motion = track_motion(gnss);

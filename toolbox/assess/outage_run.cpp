@@ -1,5 +1,7 @@
 #include "toolbox/assess/outage_run.hpp"
 
+#include "common/parallel/parallel_for.hpp"
+
 #include "estimator/run/alignment_options_from.hpp"
 
 #include <algorithm>
@@ -116,19 +118,6 @@ OutageResult rerun_with_outage(const std::vector<ImuIncrement>& imu, const std::
   return tracker.finish(f);
 }
 
-// Runs job(i) for i in [0, n) on `threads` threads, largest first as given by `order`.
-template <typename Job>
-void run_parallel(const std::vector<size_t>& order, int threads, Job job) {
-  std::atomic<size_t> next{0};
-  auto worker = [&] {
-    for (size_t k; (k = next++) < order.size();) job(order[k]);
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
-}
-
 }  // namespace
 
 OutageRun run_outages(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss, const KfGinsConfig& cfg,
@@ -139,7 +128,7 @@ OutageRun run_outages(const std::vector<ImuIncrement>& imu, const std::vector<Gn
   if (imu.empty() || gnss.empty()) throw std::invalid_argument("outage: no IMU or no GNSS data");
   OutageRun run;
   run.reference = truth.empty() ? "uncut solution" : "truth";
-  run.threads = o.threads > 0 ? o.threads : std::max(1u, std::thread::hardware_concurrency());
+  run.threads = o.threads;  // the threads that worked are counted by parallel_for
   const double t_data_end = cfg.end_time_s > 0 ? std::min(cfg.end_time_s, imu.back().t_s) : imu.back().t_s;
   // Convergence counts from the filter's start (a run that aligns while moving starts late).
   const double t_init = est::initialisation_epoch(imu, gnss, cfg, est::alignment_options_from(fo));
@@ -202,7 +191,7 @@ OutageRun run_outages(const std::vector<ImuIncrement>& imu, const std::vector<Gn
   std::atomic<int> done{0};
   std::mutex say_mutex;
   const auto t1 = Clock::now();
-  run_parallel(order, run.threads, [&](size_t i) {
+  run.threads = parallel_for(order, run.threads, [&](size_t i) {
     const OutageWindow& w = plan[i];
     const size_t c = static_cast<size_t>(std::lower_bound(starts.begin(), starts.end(), w.start_s) - starts.begin());
     if (o.exact_rerun)

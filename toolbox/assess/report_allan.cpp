@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "toolbox/assess/gnuplot_figure.hpp"
+#include "common/plot/gnuplot.hpp"
 #include "toolbox/assess/json_file.hpp"
 #include "toolbox/assess/report_sections.hpp"
 
@@ -56,7 +57,7 @@ void add_allan_section(HtmlPage& page, const std::string& dir, const ReportInput
     GnuplotFigure fig(dir, "allan_" + std::to_string(ch++), 760, 480);
     const std::string m = fig.add_data({tau, dev, lo, hi});
     fig.add("set logscale xy\nset format y '10^{%L}'\nset format x '10^{%L}'\nset xlabel 'tau [s]'");
-    fig.add("set ylabel 'Allan deviation [" + unit + "]'\nset title '" + gnuplot_text(name) + "'");
+    fig.add("set ylabel " + plot::gnuplot_label("Allan deviation [" + unit + "]") + "\nset title " + plot::gnuplot_label(name));
     std::string plot = "plot '" + m + "' using 1:2:3:4 with yerrorbars pt 7 ps 0.5 lc rgb '#1f77b4' title 'measured'";
     if (fitted) {
       const std::string f = fig.add_data({ft, total, q, n, b, k, r});

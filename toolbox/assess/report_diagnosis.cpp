@@ -5,6 +5,7 @@
 #include <map>
 
 #include "toolbox/assess/gnuplot_figure.hpp"
+#include "common/plot/gnuplot.hpp"
 #include "toolbox/assess/json_file.hpp"
 #include "toolbox/assess/report_sections.hpp"
 
@@ -47,7 +48,7 @@ void add_diagnosis_section(HtmlPage& page, const std::string& dir, const ReportI
                          text_of(c["sigma"]), text_of(c["group"])});
     const double s = json_double(c["statistic"], NAN);
     if (std::isfinite(s) && s > 0) {
-      labels += std::string(labels.empty() ? "" : ", ") + "'" + gnuplot_text(text_of(c["effect"])) + "' " + std::to_string(idx.size());
+      labels += std::string(labels.empty() ? "" : ", ") + plot::gnuplot_label(text_of(c["effect"])) + " " + std::to_string(idx.size());
       idx.push_back(static_cast<double>(idx.size()));
       stat.push_back(s);
     }
@@ -73,7 +74,7 @@ void add_diagnosis_section(HtmlPage& page, const std::string& dir, const ReportI
       const auto it = after.find(k);
       if (it == after.end()) continue;
       t.rows.push_back({k, fixed(v, 4), fixed(it->second, 4), v != 0 ? fixed(it->second / v, 3) : "-"});
-      labels2 += std::string(labels2.empty() ? "" : ", ") + "'" + gnuplot_text(k) + "' " + std::to_string(x.size());
+      labels2 += std::string(labels2.empty() ? "" : ", ") + plot::gnuplot_label(k) + " " + std::to_string(x.size());
       x.push_back(static_cast<double>(x.size()));
       b.push_back(std::abs(v));
       a.push_back(std::abs(it->second));

@@ -2,6 +2,7 @@
 #include <map>
 
 #include "toolbox/assess/gnuplot_figure.hpp"
+#include "common/plot/gnuplot.hpp"
 #include "toolbox/assess/nav_side_files.hpp"
 #include "toolbox/assess/report_sections.hpp"
 
@@ -40,7 +41,7 @@ void add_innovation_section(HtmlPage& page, const std::string& dir, const Report
     const std::string unit = kind == "gnss_position" ? "m" : "m/s";
     GnuplotFigure fig(dir, "innovations_" + kind, 1000, 600);
     const std::string d = fig.add_data({t, i0, i1, i2, s0, s1, s2});
-    fig.add("set multiplot layout 3,1 title '" + gnuplot_text(kind) + " innovations [" + unit + "]'\nset lmargin 12\nset rmargin 22");
+    fig.add("set multiplot layout 3,1 title " + plot::gnuplot_label(kind + " innovations [" + unit + "]") + "\nset lmargin 12\nset rmargin 22");
     const char* axis[3] = {"north", "east", "down"};
     for (int k = 0; k < 3; ++k) {
       const std::string c = std::to_string(2 + k), s = std::to_string(5 + k);

@@ -4,6 +4,7 @@
 
 #include "common/geo/earth_model.hpp"
 #include "toolbox/assess/gnuplot_figure.hpp"
+#include "common/plot/gnuplot.hpp"
 #include "toolbox/assess/nav_difference.hpp"
 #include "toolbox/assess/nav_side_files.hpp"
 #include "toolbox/assess/report_sections.hpp"
@@ -48,7 +49,7 @@ void add_trajectory_section(HtmlPage& page, const std::string& dir, const NavSer
   if (ref) {
     std::vector<double> re, rn;
     local_en(*ref, origin, in.max_plot_points, re, rn);
-    plot += ", '" + fig.add_data({re, rn}) + "' using 1:2 with lines lw 1 dt 2 lc rgb '#d62728' title '" + in.reference_label + "'";
+    plot += ", '" + fig.add_data({re, rn}) + "' using 1:2 with lines lw 1 dt 2 lc rgb '#d62728' title " + plot::gnuplot_label(in.reference_label);
   }
   plot += ", '" + fig.add_data({{e.front()}, {n.front()}}) + "' using 1:2 with points pt 7 ps 1.5 lc rgb '#2ca02c' title 'start'";
   fig.add("set size ratio -1\nset xlabel 'east [m]'\nset ylabel 'north [m]'\nset title 'Trajectory (local east/north from the first epoch)'");

@@ -1,5 +1,7 @@
 #include "toolbox/calib/calib_report.hpp"
 
+#include "common/plot/gnuplot.hpp"
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -243,17 +245,16 @@ std::vector<std::string> write_sweep_plots(const std::string& prefix, const Stat
     }
     {
       std::ofstream gp(base + ".gp");
-      gp << "set terminal pngcairo size 900,560\nset output '" << base << ".png'\n"
+      gp << "set terminal pngcairo size 900,560 noenhanced\nset output " << plot::gnuplot_literal(base + ".png") << "\n"
          << "set title 'Damping sweep, " << tag << ": chosen EV = " << a->ev << "'\n"
          << "set xlabel 'EV (damping added to the standardised normal matrix)'\nset logscale y\n"
          << "set ylabel 'max eigenvalue of the standardised covariance'\nset y2label 'rms residual'\n"
          << "set logscale y2\nset ytics nomirror\nset y2tics\nset key top center\nset grid\n"
          << "set arrow from " << a->ev << ", graph 0 to " << a->ev << ", graph 1 nohead dt 2\n"
-         << "plot '" << base << ".dat' u 1:2 w lp t 'max covariance eigenvalue' axes x1y1, "
+         << "plot " << plot::gnuplot_literal(base + ".dat") << " u 1:2 w lp t 'max covariance eigenvalue' axes x1y1, "
          << "'' u 1:3 w lp t 'rms residual' axes x1y2\n";
     }
-    const std::string cmd = "gnuplot '" + base + ".gp' 2>&1";
-    if (std::system(cmd.c_str()) == 0)
+    if (plot::run_gnuplot(base + ".gp", ".") == 0)
       made.push_back(base + ".png");
     else
       spdlog::warn("gnuplot failed on {}.gp (data and script are there to rerun)", base);

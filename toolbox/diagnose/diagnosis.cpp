@@ -1,5 +1,6 @@
 #include "toolbox/diagnose/diagnosis.hpp"
 
+#include <stdexcept>
 #include <algorithm>
 #include <cstdio>
 #include <ctime>
@@ -59,6 +60,7 @@ constexpr double kOpenGateProbability = 1.0 - 1e-12;  // NIS gate ~ 60: only num
 bool Diagnosis::consistent() const { return add.empty() && !steps.empty() && steps.front().check.consistent(); }
 
 Diagnosis diagnose(const DiagnoseInputs& in, const DiagnoseOptions& opt) {
+  if (opt.max_added < 0) throw std::invalid_argument("diagnose: max_added must be >= 0, got " + std::to_string(opt.max_added));
   const double cpu0 = cpu_seconds();
   Diagnosis d;
   d.model = opt.model.model;

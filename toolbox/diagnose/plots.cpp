@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "common/io/input_error.hpp"
+#include "common/plot/gnuplot.hpp"
 
 namespace ldv::diag {
 namespace {
@@ -50,10 +51,7 @@ std::string segment_shading(const std::string& dat, double t0) {
   return s;
 }
 
-int run_gnuplot(const fs::path& dir, const std::string& script) {
-  const std::string cmd = "cd '" + dir.string() + "' && gnuplot '" + script + "' > /dev/null 2>&1";
-  return std::system(cmd.c_str()) == 0 ? 1 : 0;
-}
+int run_gnuplot(const fs::path& dir, const std::string& script) { return plot::run_gnuplot(script, dir) == 0 ? 1 : 0; }
 
 }  // namespace
 
@@ -65,11 +63,14 @@ int write_plots(const Diagnosis& d, const std::string& dir_name) {
   write_innovations(dir / "innov_pos_after.dat", d.after, d.labels_after, est::MeasurementKind::kGnssPosition);
   int written = 0;
   const std::string term = "set terminal pngcairo size 1400,900 font ',10'\n";
+  // The model name comes from the user: inside the titles' literals, as a literal's inner text.
+  const std::string quoted_model = plot::gnuplot_label(d.model);
+  const std::string model_text = quoted_model.substr(1, quoted_model.size() - 2);
 
   {  // 1. innovations with their 3-sigma envelope, shaded by manoeuvre
     std::ofstream gp = open(dir / "innovations.gp");
     gp << term << "set output 'innovations.png'\nset multiplot layout 3,1 title 'GNSS position innovations (predicted - measured) "
-       << "with 3-sigma envelope, model " << d.model << "'\nset grid\nY = 0\n";
+       << "with 3-sigma envelope, model " << model_text << "'\nset grid\nY = 0\n";
     const char* axis[3] = {"north", "east", "down"};
     for (int a = 0; a < 3; ++a) {
       const std::string c = std::to_string(3 + a), sc = std::to_string(6 + a);
@@ -127,7 +128,7 @@ int write_plots(const Diagnosis& d, const std::string& dir_name) {
     std::ofstream gp = open(dir / "before_after.gp");
     gp << term << "set output 'before_after.png'\nset multiplot layout " << (d.truth_before.available ? 2 : 1)
        << ",1 title 'Before / after adding the verdict'\nset grid\nset logscale y\nset ylabel 'position NIS (3 dof)'\n"
-       << "plot 'innov_pos_before.dat' using ($1-" << t0 << "):9 with lines lc rgb '#dd3333' title 'before (" << d.model
+       << "plot 'innov_pos_before.dat' using ($1-" << t0 << "):9 with lines lc rgb '#dd3333' title 'before (" << model_text
        << ")', 'innov_pos_after.dat' using ($1-" << t0 << "):9 with lines lc rgb '#228822' title 'after', 3 with lines dt 2 lc rgb 'black' title 'expected 3'\n";
     if (d.truth_before.available)
       gp << "set ylabel 'position error vs truth [m]'\nset xlabel 'time since start [s]'\nplot 'truth_error.dat' using 1:2 with lines "

@@ -7,6 +7,7 @@
 
 #include "common/io/input_error.hpp"
 #include "common/logging.hpp"
+#include "tools/ldv/cli_checks.hpp"
 #include "tools/ldv/command_registry.hpp"
 #include "toolbox/allan/allan_input.hpp"
 #include "toolbox/allan/allan_plot.hpp"
@@ -119,8 +120,8 @@ void add_allan_command(CLI::App& app) {
   cmd->add_option("--format", args->format, "kfgins | csv | phase | frequency (default from the extension: .csv csv, "
                                              ".dat/.phd phase, .frd frequency, else kfgins)")
       ->check(CLI::IsMember({"kfgins", "csv", "phase", "frequency"}));
-  auto rate = cmd->add_option("--rate", args->rate, "sample rate [Hz]")->check(CLI::PositiveNumber);
-  cmd->add_option("--tau0", args->tau0, "sample interval [s]")->check(CLI::PositiveNumber)->excludes(rate);
+  auto rate = cmd->add_option("--rate", args->rate, "sample rate [Hz]")->check(ldv::cli::finite_range(1e-9, 1e9));
+  cmd->add_option("--tau0", args->tau0, "sample interval [s]")->check(ldv::cli::finite_range(1e-9, 1e9))->excludes(rate);
   cmd->add_option("--columns", args->columns, "csv: columns to analyse, by header name or 1-based index")->delimiter(',');
   cmd->add_option("--units", args->units,
                   "unit of the columns, one or one per column: rad/s deg/s deg/h rad/h m/s^2 g mg ug 1")->delimiter(',');
@@ -152,7 +153,8 @@ void add_allan_command(CLI::App& app) {
   cmd->add_option("--target-precision", args->target_precision,
                   "report the record length at which each resolved term reaches this relative 1-sigma (default 0.1)")
       ->check(CLI::Range(1e-4, 1.0));
-  cmd->add_option("--threads", args->threads, "worker threads (default: one per core)");
+  cmd->add_option("--threads", args->threads, "worker threads (default: one per core; at most 256 are used)")
+      ->check(CLI::Range(0, 100000));
   cmd->callback([args] { run_allan(*args); });
 }
 

@@ -64,7 +64,7 @@ void add_diagnose_command(CLI::App& app) {
   c->add_option("--json", args->json, "write the diagnosis as JSON");
   c->add_option("--truth", args->truth, "truth .nav (KF-GINS layout, IMU centre): navigation error before/after");
   c->add_option("--plots", args->plots, "write gnuplot PNGs (and their data and scripts) into this folder");
-  c->add_option("--max-add", args->max_add, "stepwise: add at most this many effects (default 3)");
+  c->add_option("--max-add", args->max_add, "stepwise: add at most this many effects (default 3)")->check(CLI::Range(0, 20));
   c->add_option("--alpha", args->alpha, "family-wise false-alarm rate of the screening (default 0.05)");
   c->add_option("--bandwidth", args->bandwidth_s, "long-run variance bandwidth [s] (default 120: > GNSS error correlation)");
   c->add_flag("--quiet", args->quiet, "no progress on stderr");

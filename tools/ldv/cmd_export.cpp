@@ -3,11 +3,11 @@
 // offline tool (ldv nav, diagnose, compare, report) reads what the vehicle recorded.
 #include <cmath>
 #include <filesystem>
-#include <lcm/lcm-cpp.hpp>
 
 #include <ldv_lcm/nav_state_t.hpp>
 #include <ldv_lcm/tspi_v1_t.hpp>
 
+#include "common/bus/lcm_log_reader.hpp"
 #include "common/bus/message_conversions.hpp"
 #include "common/formats/kfgins_files.hpp"
 #include "common/io/input_error.hpp"
@@ -39,34 +39,35 @@ void add_export_command(CLI::App& app) {
     std::vector<ImuIncrement> imu;
     std::vector<GnssFix> gnss;
     std::unique_ptr<NavWriter> nav, tspi;
-    long malformed = 0, unlocked = 0, nav_n = 0, tspi_n = 0;
+    long malformed = 0, unlocked = 0, nav_n = 0, tspi_n = 0, corrupt_events = 0;
     for (const std::string& path : logs) {
-      lcm::LogFile log(path, "r");
-      if (!log.good()) throw InputError(path, 0, "cannot open LCM log file");
-      while (const lcm::LogEvent* ev = log.readNextEvent()) {
-        if (ev->channel == "IMU") {
+      LcmLogReader log(path);
+      LcmLogEvent ev;
+      while (log.next(ev)) {
+        if (ev.channel == "IMU") {
           ldv_lcm::imu_sample_t m;
-          if (m.decode(ev->data, 0, ev->datalen) < 0 || !is_valid(m)) { ++malformed; continue; }
+          if (m.decode(ev.data.data(), 0, static_cast<int>(ev.data.size())) < 0 || !is_valid(m)) { ++malformed; continue; }
           if (!has_gps_time(m)) { ++unlocked; continue; }  // stamped before imu_acq locked to PPS
           imu.push_back(imu_from_message(m));
-        } else if (ev->channel == "GNSS_SOLUTION") {
+        } else if (ev.channel == "GNSS_SOLUTION") {
           ldv_lcm::gnss_solution_t m;
-          if (m.decode(ev->data, 0, ev->datalen) < 0 || !is_valid(m)) { ++malformed; continue; }
+          if (m.decode(ev.data.data(), 0, static_cast<int>(ev.data.size())) < 0 || !is_valid(m)) { ++malformed; continue; }
           gnss.push_back(gnss_from_message(m));
-        } else if (ev->channel == "NAV") {
+        } else if (ev.channel == "NAV") {
           ldv_lcm::nav_state_t m;
-          if (m.decode(ev->data, 0, ev->datalen) < 0) { ++malformed; continue; }
+          if (m.decode(ev.data.data(), 0, static_cast<int>(ev.data.size())) < 0) { ++malformed; continue; }
           if (!nav) nav = std::make_unique<NavWriter>((fs::path(out_dir) / "nav.nav").string());
           nav->write(nav_record_of(m));
           ++nav_n;
-        } else if (ev->channel == "TSPI") {
+        } else if (ev.channel == "TSPI") {
           ldv_lcm::tspi_v1_t m;
-          if (m.decode(ev->data, 0, ev->datalen) < 0) { ++malformed; continue; }
+          if (m.decode(ev.data.data(), 0, static_cast<int>(ev.data.size())) < 0) { ++malformed; continue; }
           if (!tspi) tspi = std::make_unique<NavWriter>((fs::path(out_dir) / "tspi.nav").string());
           tspi->write(nav_record_of(m));
           ++tspi_n;
         }
       }
+      corrupt_events += log.corrupt_events() + log.truncated_events();
     }
     // The log is in arrival order; the KF-GINS files are in time order with one row per epoch.
     auto by_time = [](const auto& a, const auto& b) { return a.t_s < b.t_s; };
@@ -95,9 +96,9 @@ void add_export_command(CLI::App& app) {
     if (!imu.empty()) write_kfgins_imu((fs::path(out_dir) / "imu.txt").string(), imu);
     if (!gnss.empty()) write_kfgins_gnss((fs::path(out_dir) / "gnss.txt").string(), gnss, true);
     std::fprintf(stderr,
-                 "ldv export: %zu IMU, %zu GNSS, %ld NAV, %ld TSPI records (%ld malformed, %ld IMU stamped before "
-                 "the PPS lock skipped) -> %s\n",
-                 imu.size(), gnss.size(), nav_n, tspi_n, malformed, unlocked, out_dir.c_str());
+                 "ldv export: %zu IMU, %zu GNSS, %ld NAV, %ld TSPI records (%ld malformed messages, %ld corrupt log "
+                 "events skipped, %ld IMU stamped before the PPS lock skipped) -> %s\n",
+                 imu.size(), gnss.size(), nav_n, tspi_n, malformed, corrupt_events, unlocked, out_dir.c_str());
   });
 }
 

@@ -218,8 +218,8 @@ void run_lcm_log(const NavArgs& a, const KfGinsConfig& cfg, est::FilterOptions o
   out.reset();
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
   if (!a.quiet) {
-    std::fprintf(stderr, "ldv nav: LCM log: %ld IMU, %ld GNSS, %ld malformed, %ld other messages\n", sum.imu_messages,
-                 sum.gnss_messages, sum.malformed, sum.other_messages);
+    std::fprintf(stderr, "ldv nav: LCM log: %ld IMU, %ld GNSS, %ld malformed, %ld other messages, %ld corrupt log events\n",
+                 sum.imu_messages, sum.gnss_messages, sum.malformed, sum.other_messages, sum.corrupt_log_events);
     print_summary("replayed through FusionEngine", n, t0, t1, sum.gnss_messages, sum.initialisation, engine.filter(),
                   elapsed, nav_path);
   }
@@ -265,6 +265,7 @@ void run_nav(const NavArgs& a) {
   if (!a.quiet) {
     std::fprintf(stderr, "ldv nav: %zu IMU samples (%s), %zu GNSS fixes\n", in.imu.size(), in.imu_note.c_str(),
                  in.gnss.size());
+    if (!in.gnss_note.empty()) std::fprintf(stderr, "ldv nav: %s\n", in.gnss_note.c_str());
     std::fprintf(stderr, "state layout (%d states):\n%s", filter->layout().size(), filter->layout().describe().c_str());
   }
 
@@ -301,7 +302,8 @@ void add_nav_command(CLI::App& app) {
                 "alignment without a given state: GNSS speed [m/s] above which the course gives the heading (default ldv.align_speed_mps, else 2)");
   c->add_option("--align-hypotheses", args->align_hypotheses,
                 "unknown mounting (hand-held): try N body headings 360/N apart against the GNSS track (default "
-                "ldv.align_hypotheses, else 1: body x along the motion; 12 for a hand-held IMU)");
+                "ldv.align_hypotheses, else 1: body x along the motion; 12 for a hand-held IMU)")
+      ->check(CLI::Range(0, 360));
   c->add_flag("--quiet", args->quiet, "no progress or summary on stderr");
   c->add_flag("--print-options", args->print_options, "print the filter options");
   c->callback([args] { run_nav(*args); });

@@ -10,6 +10,7 @@
 #include "toolbox/assess/nav_inputs.hpp"
 #include "toolbox/assess/outage_run.hpp"
 #include "toolbox/assess/outage_table.hpp"
+#include "tools/ldv/cli_checks.hpp"
 #include "tools/ldv/command_registry.hpp"
 #include "tools/ldv/nav_input_options.hpp"
 
@@ -50,13 +51,14 @@ void add_outage_command(CLI::App& app) {
   CLI::App* c = app.add_subcommand("outage", "GNSS outages during manoeuvres: drift table (paper Table 12) and KF-GINS metric");
   cli::add_nav_input_options(c, a->inputs);
   c->add_option("--truth", a->truth, "truth .nav (else the drift is measured against the uncut solution)");
-  c->add_option("--lengths", a->run.lengths_s, "outage lengths [s]")->delimiter(',');
+  c->add_option("--lengths", a->run.lengths_s, "outage lengths [s]")->delimiter(',')->check(cli::finite_positive(1e7));
   c->add_option("--json", a->json, "write every outage, its drift curve and the table as JSON");
-  c->add_option("--converge", a->run.plan.converge_s, "no outage in the first seconds of GNSS [s]");
-  c->add_option("--recovery", a->run.plan.recovery_s, "GNSS kept between outages [s]");
-  c->add_option("--manoeuvre-accel", a->run.plan.manoeuvre_accel_mps2, "horizontal acceleration of a manoeuvre [m/s^2]");
-  c->add_option("--min-speed", a->run.plan.min_speed_mps, "an outage starts only when moving faster [m/s]");
-  c->add_option("--threads", a->run.threads, "worker threads (0: all cores)");
+  c->add_option("--converge", a->run.plan.converge_s, "no outage in the first seconds of GNSS [s]")->check(cli::finite_range(0, 1e7));
+  c->add_option("--recovery", a->run.plan.recovery_s, "GNSS kept between outages [s]")->check(cli::finite_range(0, 1e7));
+  c->add_option("--manoeuvre-accel", a->run.plan.manoeuvre_accel_mps2, "horizontal acceleration of a manoeuvre [m/s^2]")
+      ->check(cli::finite_range(0, 1e3));
+  c->add_option("--min-speed", a->run.plan.min_speed_mps, "an outage starts only when moving faster [m/s]")->check(cli::finite_range(0, 1e3));
+  c->add_option("--threads", a->run.threads, "worker threads (0: all cores; at most 256 are used)")->check(CLI::Range(0, 100000));
   c->add_flag("--exact", a->run.exact_rerun, "re-run the whole filter per outage instead of restarting from checkpoints (slow)");
   c->add_flag("--no-zupt", a->no_zupt, "no zero-velocity updates (in the uncut run and the outages)");
   c->add_flag("--quiet", a->quiet, "no progress on stderr");

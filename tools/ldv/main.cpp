@@ -5,6 +5,7 @@
 
 #include "common/io/input_error.hpp"
 #include "common/logging.hpp"
+#include "tools/ldv/cli_checks.hpp"
 #include "tools/ldv/command_registry.hpp"
 
 namespace ldv::cli {
@@ -28,6 +29,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "ldvnav 0.1.0");
   ldv::init_logging();
   ldv::cli::add_all_commands(app);
+  ldv::cli::refuse_non_finite_numbers(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -33,6 +33,13 @@ inline void add_nav_input_options(CLI::App* c, assess::NavInputArgs& in, bool co
   c->add_option("--add", in.add, "add an effect block (repeatable)");
   c->add_option("--drop", in.drop, "drop an effect block (repeatable)");
   c->add_option("--lever", in.lever, "antenna lever arm x y z [m], body front-right-down")->expected(3);
+  c->add_option("--imu-latency", in.imu_latency,
+                "auto: estimate how late the IMU stamps are from the turns and take it out when significant; off "
+                "(default ldv.imu_latency, else auto; off with --imu-time-shift or --kfgins-compatible)")
+      ->check(CLI::IsMember({"auto", "off"}));
+  c->add_flag("--kfgins-compatible", in.kfgins_compatible,
+              "KF-GINS's measurement gate (reject beyond it, force after 10 rejections) instead of the robust update "
+              "(default ldv.kfgins_compatible, else off)");
 }
 
 }  // namespace ldv::cli

@@ -1,0 +1,112 @@
+#include "estimator/calibrate/imu_latency.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/geo/earth_model.hpp"
+
+namespace ldv::est {
+namespace {
+
+double wrap_pi(double a) { return std::remainder(a, 2.0 * M_PI); }
+
+// Cumulative heading angle about the vertical sensed by the gyros, at every IMU stamp (piecewise linear).
+struct HeadingIntegral {
+  std::vector<double> t_s, psi_rad;
+  double at(double t) const {
+    if (t <= t_s.front()) return psi_rad.front();
+    if (t >= t_s.back()) return psi_rad.back();
+    const size_t i = static_cast<size_t>(std::upper_bound(t_s.begin(), t_s.end(), t) - t_s.begin());
+    const double a = (t - t_s[i - 1]) / (t_s[i] - t_s[i - 1]);
+    return psi_rad[i - 1] + a * (psi_rad[i] - psi_rad[i - 1]);
+  }
+};
+
+struct CourseInterval {
+  double t0_s, t1_s, dchi_rad;
+};
+
+}  // namespace
+
+ImuLatencyEstimate estimate_imu_latency(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
+                                        const ImuLatencyOptions& o) {
+  ImuLatencyEstimate out;
+  if (imu.size() < 100 || gnss.size() < 10) return out;
+  // The vertical (down) in body axes: against the mean specific force, which points up.
+  Vec3 sum_dv = Vec3::Zero();
+  for (const ImuIncrement& s : imu) sum_dv += s.dvel_b_mps;
+  if (!(sum_dv.norm() > 0.0) || !sum_dv.allFinite()) return out;
+  const Vec3 down_b = -sum_dv.normalized();
+  HeadingIntegral h;
+  h.t_s.reserve(imu.size() + 1);
+  h.psi_rad.reserve(imu.size() + 1);
+  h.t_s.push_back(imu.front().t_s - imu.front().dt_s);
+  h.psi_rad.push_back(0.0);
+  for (const ImuIncrement& s : imu) {
+    if (!(s.t_s > h.t_s.back()) || !s.dtheta_b_rad.allFinite()) continue;
+    h.t_s.push_back(s.t_s);
+    h.psi_rad.push_back(h.psi_rad.back() + s.dtheta_b_rad.dot(down_b));
+  }
+  // Course at each fix from the chord of its neighbours; course change over consecutive fixes.
+  std::vector<double> chi(gnss.size(), NAN);
+  double nominal_dt = 0.0;
+  {
+    std::vector<double> dts;
+    for (size_t k = 1; k < gnss.size(); ++k) dts.push_back(gnss[k].t_s - gnss[k - 1].t_s);
+    std::nth_element(dts.begin(), dts.begin() + dts.size() / 2, dts.end());
+    nominal_dt = dts[dts.size() / 2];
+  }
+  if (!(nominal_dt > 0.0)) return out;
+  for (size_t k = 1; k + 1 < gnss.size(); ++k) {
+    const double span = gnss[k + 1].t_s - gnss[k - 1].t_s;
+    if (span > 3.0 * nominal_dt || !(span > 0.0)) continue;
+    const Vec3 d = earth::ned_between(gnss[k - 1].pos, gnss[k + 1].pos);
+    if (d.head<2>().norm() / span < o.min_speed_mps) continue;
+    chi[k] = std::atan2(d.y(), d.x());
+  }
+  std::vector<CourseInterval> iv;
+  for (size_t k = 1; k + 2 < gnss.size(); ++k) {
+    if (std::isnan(chi[k]) || std::isnan(chi[k + 1])) continue;
+    if (gnss[k].t_s - o.max_lag_s < h.t_s.front() || gnss[k + 1].t_s + o.max_lag_s > h.t_s.back()) continue;
+    iv.push_back({gnss[k].t_s, gnss[k + 1].t_s, wrap_pi(chi[k + 1] - chi[k])});
+  }
+  out.intervals = static_cast<int>(iv.size());
+  for (const CourseInterval& c : iv)
+    out.turning_intervals += std::abs(c.dchi_rad) / (c.t1_s - c.t0_s) > o.min_turn_rad_s;
+  if (out.turning_intervals < o.min_intervals) return out;
+  // Misfit at a lag, with the constant gyro bias (rate about the vertical) fitted by least squares.
+  auto misfit = [&](double lag_s) {
+    double sxy = 0, sxx = 0, syy = 0;
+    for (const CourseInterval& c : iv) {
+      const double e = c.dchi_rad - (h.at(c.t1_s + lag_s) - h.at(c.t0_s + lag_s));
+      const double dt = c.t1_s - c.t0_s;
+      sxy += e * dt, sxx += dt * dt, syy += e * e;
+    }
+    return syy - sxy * sxy / sxx;
+  };
+  const double step_s = 1e-3;
+  const int n = static_cast<int>(std::lround(o.max_lag_s / step_s));
+  std::vector<double> cost(2 * n + 1);
+  int best = 0;
+  for (int i = 0; i <= 2 * n; ++i) {
+    cost[i] = misfit((i - n) * step_s);
+    if (cost[i] < cost[best]) best = i;
+  }
+  if (best == 0 || best == 2 * n) return out;  // at the edge of the search: not a minimum
+  // Parabola through the minimum and its neighbours (a few steps apart for a stable curvature).
+  const int w = std::min({5, best, 2 * n - best});
+  const double c0 = cost[best - w], c1 = cost[best], c2 = cost[best + w], hstep = w * step_s;
+  const double curvature = (c0 - 2.0 * c1 + c2) / (hstep * hstep);  // d2 cost / d lag2
+  if (!(curvature > 0.0)) return out;
+  const double offset = 0.5 * hstep * (c0 - c2) / (c0 - 2.0 * c1 + c2);
+  out.lag_s = (best - n) * step_s + std::clamp(offset, -hstep, hstep);
+  const double dof = std::max(1.0, static_cast<double>(iv.size()) - 2.0);
+  const double residual_var = std::max(misfit(out.lag_s), 0.0) / dof;
+  out.residual_rms_rad = std::sqrt(residual_var);
+  // cost = sum e^2: its Hessian is 2 J^T J, so var(lag) = sigma_e^2 (J^T J)^-1 = 2 sigma_e^2 / curvature.
+  out.sigma_s = std::sqrt(2.0 * residual_var / curvature);
+  out.valid = std::isfinite(out.lag_s) && std::isfinite(out.sigma_s);
+  return out;
+}
+
+}  // namespace ldv::est

@@ -1,0 +1,44 @@
+#pragma once
+// How late the IMU's time tags are against GNSS time, from the data alone: the turn rate the gyros sense
+// about the vertical must match the turn rate of the GNSS track. Consumer IMUs behind USB or serial
+// buffers are tagged on arrival, hundreds of milliseconds late; a filter that integrates them at the
+// wrong time sees every turn as a lever-arm or heading error and leaves the RTK.
+//
+// Method: the vertical is the mean specific force over the file (any mounting, upside down included);
+// the IMU's heading change over each GNSS interval [t_k, t_k+1] is the integral of the gyro rate about
+// it between t_k + lag and t_k+1 + lag; the GNSS course change is taken from the track (chords of
+// consecutive fixes). The lag minimises the squared misfit with a constant gyro bias fitted alongside
+// (grid of 1 ms steps, parabolic refinement); sigma from the misfit's curvature and residual scatter.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "common/formats/nav_types.hpp"
+
+namespace ldv::est {
+
+struct ImuLatencyOptions {
+  double max_lag_s = 1.0;        // searched in [-max, +max]
+  double min_speed_mps = 1.0;    // course taken only when moving
+  int min_intervals = 20;        // fewer turning intervals: no estimate
+  double min_turn_rad_s = 0.02;  // an interval counts as turning above this course rate
+};
+
+struct ImuLatencyEstimate {
+  bool valid = false;    // enough turning to estimate
+  double lag_s = 0.0;    // IMU tags minus true time: add -lag_s to every IMU stamp
+  double sigma_s = 0.0;  // 1-sigma
+  int intervals = 0;     // GNSS intervals used
+  int turning_intervals = 0;
+  double residual_rms_rad = 0.0;  // heading-change misfit at the optimum
+  // Worth correcting the data for: beyond 3 sigma, at least 5 ms (below that, a small model misfit such
+  // as side-slip can bias the estimate by as much, and half a sample at 100 Hz does not matter), and
+  // known to better than 20 ms.
+  bool significant() const { return valid && std::abs(lag_s) > std::max(3.0 * sigma_s, 0.005) && sigma_s < 0.02; }
+};
+
+// imu and gnss in time order on the same time base (GPS seconds of week).
+ImuLatencyEstimate estimate_imu_latency(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
+                                        const ImuLatencyOptions& options = {});
+
+}  // namespace ldv::est

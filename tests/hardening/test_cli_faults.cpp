@@ -1,0 +1,296 @@
+// Regression corpus of issue 13's crashes and hangs in the `ldv` commands: given the input or option that
+// crashed, hung or exhausted memory, when ldv runs, then it ends with a clear error naming what was wrong,
+// or handles it correctly and counts it; never a signal, never past its time limit.
+#include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "cli_run.hpp"
+#include "common/bus/lcm_log_reader.hpp"
+#include "common/formats/kfgins_files.hpp"
+#include "common/geo/earth_model.hpp"
+#include "common/io/input_error.hpp"
+#include "common/parallel/parallel_for.hpp"
+#include "estimator/filter/nav_filter.hpp"
+#include "sim/simulator.hpp"
+#include "toolbox/allan/noise_fit.hpp"
+#include "toolbox/assess/outage_plan.hpp"
+
+namespace ldv {
+namespace {
+namespace fs = std::filesystem;
+using test::is_clear_error;
+using test::run_ldv;
+
+fs::path temp_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("ldv_faults_" + std::to_string(getpid()) + "_" + name);
+  fs::create_directories(d);
+  return d;
+}
+
+// White rate noise as a CSV with a time column (an accelerometer-like channel).
+fs::path write_rate_csv(const fs::path& dir, double scale, int rows, double dt_s = 0.01) {
+  const fs::path p = dir / ("rate_" + std::to_string(rows) + ".csv");
+  std::ofstream f(p);
+  f.precision(17);
+  f << "t,acc\n";
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> n(0.0, 1.0);
+  for (int i = 0; i < rows; ++i) f << i * dt_s << "," << scale * n(rng) << "\n";
+  return p;
+}
+
+// A one-minute simulated tactical drive written as KF-GINS files (kfgins.yaml, imu.txt, gnss.txt, ...).
+const fs::path& drive_dir() {
+  static const fs::path d = [] {
+    const fs::path dir = temp_dir("drive");
+    sim::SimRequest req;
+    req.grade = "hg1700";
+    req.seed = 11;
+    req.duration_s = 90.0;
+    req.scenario = "drive";
+    req.gnss_rate_hz = 5.0;
+    sim::SimResult result = sim::simulate(req);
+    sim::write_outputs(result, (dir / "drive").string());
+    return dir / "drive";
+  }();
+  return d;
+}
+
+}  // namespace
+
+// --- ldv allan --------------------------------------------------------------------------------------
+
+TEST(AllanFaults, EmptyTermListIsAClearError) {
+  const fs::path csv = write_rate_csv(temp_dir("allan_terms"), 1e-3, 3000);
+  const auto r = run_ldv({"allan", csv.string(), "--time-column", "t", "--terms", "", "--curve-only"});
+  EXPECT_EQ(r.signal, 0) << r.output;
+  EXPECT_FALSE(r.timed_out);
+  // Either refused up front or reported as a fit error per channel; never a crash.
+  EXPECT_NE(r.output.find("term"), std::string::npos) << r.output;
+}
+
+TEST(AllanFaults, HugeDataIsFittedOrRefusedClearly) {
+  // 1e200 squared overflows: the fit scales the deviations, so the white noise is identified at scale.
+  const fs::path csv = write_rate_csv(temp_dir("allan_huge"), 1e150, 3000);
+  const auto r = run_ldv({"allan", csv.string(), "--time-column", "t", "--curve-only"});
+  EXPECT_EQ(r.signal, 0) << r.output;
+  EXPECT_FALSE(r.timed_out);
+  const fs::path csv200 = write_rate_csv(temp_dir("allan_huge200"), 1e200, 3000);
+  const auto r200 = run_ldv({"allan", csv200.string(), "--time-column", "t", "--curve-only"});
+  EXPECT_EQ(r200.signal, 0) << r200.output;
+  EXPECT_FALSE(r200.timed_out);
+}
+
+TEST(AllanFaults, NoiseFitIsScaleFree) {
+  // White noise N = 1 at tau0 = 1: AVAR = N^2 / tau. The fit of the same curve scaled by 1e120 must give
+  // N scaled by 1e120 (the fit squares twice: unscaled it would overflow).
+  std::vector<allan::StabilityPoint> pts;
+  for (long m = 1; m <= 256; m *= 2) {
+    allan::StabilityPoint p;
+    p.point.m = m;
+    p.point.tau_s = static_cast<double>(m);
+    p.point.n_terms = 10000 - 2 * m;
+    p.point.dev = 1e120 / std::sqrt(static_cast<double>(m));
+    p.edf = 1000.0 / static_cast<double>(m);
+    pts.push_back(p);
+  }
+  allan::FitOptions opt;
+  opt.q = opt.r = false;
+  const allan::NoiseFit f = allan::fit_noise_model(pts, opt);
+  EXPECT_NEAR(f[allan::ModelTerm::kN].value / 1e120, 1.0, 1e-3);
+  opt.q = opt.n = opt.b = opt.k = opt.r = opt.gauss_markov = opt.sinusoid = false;
+  EXPECT_THROW(allan::fit_noise_model(pts, opt), std::invalid_argument);
+}
+
+TEST(AllanFaults, TinyTau0IsRefused) {
+  const fs::path csv = write_rate_csv(temp_dir("allan_tau0"), 1e-3, 3000);
+  for (const char* tau0 : {"1e-300", "nan", "0", "-1", "inf"}) {
+    const auto r = run_ldv({"allan", csv.string(), "--tau0", tau0});
+    EXPECT_TRUE(is_clear_error(r)) << tau0 << ": " << r.output;
+    EXPECT_NE(r.output.find("tau0"), std::string::npos) << r.output;
+  }
+}
+
+TEST(AllanFaults, AllTausOnATwoMinuteRecordIsBounded) {
+  // 12000 samples, `--taus all`: 3000 taus. The GLS fit is cubic in the number of points: it fits a
+  // log-spaced subset, so this takes seconds (it took minutes and 2.2 GB).
+  const fs::path csv = write_rate_csv(temp_dir("allan_all"), 1e-3, 12000);
+  const auto r =
+      run_ldv({"allan", csv.string(), "--time-column", "t", "--taus", "all", "--curve-only"}, 60.0, 1L << 30);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_FALSE(r.timed_out);
+}
+
+// --- ldv diagnose, outage, nav: options ------------------------------------------------------------
+
+TEST(OptionFaults, OutOfRangeAndNonFiniteValuesAreRefused) {
+  const std::string cfg = (drive_dir() / "kfgins.yaml").string();
+  const std::vector<std::vector<std::string>> bad = {
+      {"diagnose", "--kfgins-config", cfg, "--max-add", "-1"},
+      {"outage", "--kfgins-config", cfg, "--lengths", "nan"},
+      {"outage", "--kfgins-config", cfg, "--lengths", "0"},
+      {"outage", "--kfgins-config", cfg, "--lengths", "-10"},
+      {"outage", "--kfgins-config", cfg, "--lengths", "10,1e999"},
+      {"outage", "--kfgins-config", cfg, "--recovery", "nan"},
+      {"outage", "--kfgins-config", cfg, "--recovery", "-1"},
+      {"nav", "--kfgins-config", cfg, "--align-hypotheses", "100000000"},
+      {"nav", "--kfgins-config", cfg, "--imu-time-shift", "nan"},
+      {"nav", "--kfgins-config", cfg, "--lever", "nan", "0", "0"},
+  };
+  for (const auto& args : bad) {
+    const auto r = run_ldv(args, 60.0);
+    std::string line;
+    for (const auto& a : args) line += a + " ";
+    EXPECT_TRUE(is_clear_error(r)) << line << "\n" << r.output;
+  }
+}
+
+TEST(OptionFaults, ManyThreadsAreClampedNotFatal) {
+  const std::string cfg = (drive_dir() / "kfgins.yaml").string();
+  const auto r = run_ldv({"outage", "--kfgins-config", cfg, "--threads", "100000", "--lengths", "10", "--converge",
+                          "20", "--recovery", "10", "--quiet"},
+                         240.0);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+}
+
+TEST(OptionFaults, ParallelForCarriesOnWhenThreadsCannotStart) {
+  // In a child with a small address space, most of 256 thread stacks cannot be mapped: every job must
+  // still run exactly once on the threads that did start.
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const rlimit mem{512L << 20, 512L << 20};
+    setrlimit(RLIMIT_AS, &mem);
+    std::vector<std::atomic<int>> done(2000);
+    std::vector<size_t> order(done.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    const int threads = parallel_for(order, 100000, [&](size_t i) { done[i]++; });
+    for (auto& d : done)
+      if (d.load() != 1) _exit(2);
+    _exit(threads >= 1 && threads <= kMaxWorkerThreads ? 0 : 3);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status)) << "child killed by signal " << WTERMSIG(status);
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+}
+
+// --- outage planner, filter inputs ----------------------------------------------------------------
+
+TEST(PlanFaults, NonPositiveOrNanLengthsAreRefusedNotPlannedForever) {
+  std::vector<GnssFix> g(100);
+  for (size_t i = 0; i < g.size(); ++i) {
+    g[i].t_s = static_cast<double>(i);
+    g[i].pos = {0.5, 2.0, 10.0};
+    g[i].pos.lat_rad += 1e-6 * static_cast<double>(i);
+  }
+  assess::OutagePlanOptions o;
+  for (double bad : {0.0, -5.0, std::nan(""), HUGE_VAL})
+    EXPECT_THROW(assess::plan_outages(g, {bad}, 100.0, o), std::invalid_argument);
+  o.recovery_s = NAN;
+  EXPECT_THROW(assess::plan_outages(g, {10.0}, 100.0, o), std::invalid_argument);
+}
+
+TEST(FilterFaults, NanOrAbsurdInitialStateAndOptionsAreRefused) {
+  est::FilterOptions o;
+  o.lever_arm.init = Vec3(NAN, 0, 0);
+  EXPECT_THROW(est::NavFilter{o}, std::invalid_argument);
+  o = est::FilterOptions();
+  o.time_offset_init_s = 1e9;
+  EXPECT_THROW(est::NavFilter{o}, std::invalid_argument);
+  est::NavFilter f{est::FilterOptions()};
+  est::NavState s;
+  s.pos = {NAN, 0.0, 0.0};
+  EXPECT_THROW(f.initialize(s, est::NavStd{}), std::invalid_argument);
+  s.pos = {0.5, 0.0, -1e9};
+  EXPECT_THROW(f.initialize(s, est::NavStd{}), std::invalid_argument);
+}
+
+TEST(FilterFaults, AHoleInTheImuDataIsCoastedAndCountedNotIntegrated) {
+  // Given a vehicle at rest, level, with 5 Hz GNSS; when the IMU data has a 1e6 s hole (a sample whose
+  // increment says it spans the hole), then the hole is counted, the covariance opened (the state inside
+  // its own 3 sigma), and the solution back on the fixes within two seconds. Before: the increment was
+  // integrated over 1e6 s (height -4.6e15 m, "gaps 0").
+  est::NavFilter f{est::FilterOptions()};
+  est::NavState s;
+  s.pos = {0.5, 2.0, 100.0};
+  f.initialize(s, est::NavStd{});
+  const double g = 9.8;
+  auto at_rest = [&](double t, double dt) {
+    ImuIncrement in;
+    in.t_s = t;
+    in.dt_s = dt;
+    in.dvel_b_mps = Vec3(0, 0, -g * dt);
+    return in;
+  };
+  GnssFix fix;
+  fix.pos = s.pos;
+  fix.pos_std_ned_m = Vec3::Constant(0.02);
+  double t = 0.0;
+  for (int i = 0; i < 100; ++i) f.add_imu(at_rest(t += 0.01, 0.01));
+  f.add_imu(at_rest(t += 1e6, 1e6));
+  EXPECT_GE(f.faults().imu_gaps, 1);
+  EXPECT_NEAR(f.state().t_s, t, 1e-6);
+  EXPECT_GT(f.covariance()(2, 2), 1e4);  // the hole's uncertainty shows
+  EXPECT_LT(std::abs(f.state().pos.h_m - 100.0), 3.0 * std::sqrt(f.covariance()(2, 2)));
+  for (int i = 0; i < 200; ++i) {
+    if (i % 20 == 0) {
+      fix.t_s = t + 0.01;
+      f.add_gnss(fix);
+    }
+    f.add_imu(at_rest(t += 0.01, 0.01));
+  }
+  EXPECT_LT(earth::ned_between(s.pos, f.state().pos).norm(), 0.5);
+}
+
+// --- LCM logs -----------------------------------------------------------------------------------
+
+namespace {
+void put_be(std::ofstream& f, uint64_t v, int bytes) {
+  for (int i = bytes - 1; i >= 0; --i) f.put(static_cast<char>((v >> (8 * i)) & 0xff));
+}
+void put_event(std::ofstream& f, int64_t n, const std::string& channel, const std::string& data,
+               int64_t claimed_data_bytes = -1) {
+  put_be(f, LcmLogReader::kSyncWord, 4);
+  put_be(f, static_cast<uint64_t>(n), 8);
+  put_be(f, 1000000u * static_cast<uint64_t>(n), 8);
+  put_be(f, channel.size(), 4);
+  put_be(f, static_cast<uint64_t>(claimed_data_bytes >= 0 ? claimed_data_bytes : static_cast<int64_t>(data.size())), 4);
+  f << channel << data;
+}
+}  // namespace
+
+TEST(LcmLogFaults, CorruptLengthsAreSkippedAndEverythingAfterThemIsRead) {
+  const fs::path p = temp_dir("lcmlog") / "bad.lcm";
+  {
+    std::ofstream f(p, std::ios::binary);
+    put_event(f, 1, "A", "aaaa");
+    put_event(f, 2, "X", "xxxx", 0x7fffffffLL);  // says 2 GB
+    put_event(f, 3, "B", "bbbbbb");
+    put_event(f, 4, "Y", "yyyyyyyyyyyy", 5);  // a plausible but wrong length: does not end at a sync word
+    put_event(f, 5, "C", "c");
+    put_event(f, 6, "D", "dddd", 4000);  // cut short by the end of the file
+  }
+  LcmLogReader r(p.string());
+  LcmLogEvent ev;
+  std::string channels;
+  while (r.next(ev)) channels += ev.channel;
+  EXPECT_EQ(channels, "ABC");
+  EXPECT_EQ(r.corrupt_events(), 2);
+  EXPECT_EQ(r.truncated_events(), 1);
+
+  // The commands that crashed inside liblcm on such a log now read it and say what they skipped.
+  const auto ex = run_ldv({"export", p.string(), "--out", (p.parent_path() / "export").string()});
+  EXPECT_EQ(ex.exit_code, 0) << ex.output;
+  EXPECT_NE(ex.output.find("3 corrupt log events"), std::string::npos) << ex.output;
+  EXPECT_THROW(LcmLogReader("/dev/zero"), InputError);
+}
+
+}  // namespace ldv
