@@ -4,7 +4,7 @@
 #include <string>
 
 #include "services/gnss_link/gnss_stream_decoder.hpp"
-#include "services/gnss_link/input/byte_source_options.hpp"
+#include "services/input/byte_source_options.hpp"
 #include "services/gnss_link/jump_gate.hpp"
 
 namespace ldv::gnss {

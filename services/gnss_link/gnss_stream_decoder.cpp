@@ -1,6 +1,6 @@
 #include "services/gnss_link/gnss_stream_decoder.hpp"
 
-#include "services/gnss_link/protocols/ubx_messages.hpp"
+#include "common/formats/ubx_messages.hpp"
 
 namespace ldv::gnss {
 

@@ -13,11 +13,11 @@
 #include <span>
 #include <string>
 
-#include "services/gnss_link/protocols/gnss_solution.hpp"
-#include "services/gnss_link/protocols/nmea_epoch_assembler.hpp"
-#include "services/gnss_link/protocols/nmea_framer.hpp"
-#include "services/gnss_link/protocols/rtklib_solution_stream.hpp"
-#include "services/gnss_link/protocols/ubx_framer.hpp"
+#include "common/formats/gnss_solution.hpp"
+#include "common/formats/nmea_epoch_assembler.hpp"
+#include "common/formats/nmea_framer.hpp"
+#include "common/formats/rtklib_solution_stream.hpp"
+#include "common/formats/ubx_framer.hpp"
 
 namespace ldv::gnss {
 

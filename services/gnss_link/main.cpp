@@ -10,8 +10,8 @@
 
 #include "common/logging.hpp"
 #include "services/gnss_link/gnss_link_options.hpp"
-#include "services/gnss_link/gnss_messages.hpp"
-#include "services/gnss_link/input/wait_readable.hpp"
+#include "common/bus/gnss_messages.hpp"
+#include "services/input/wait_readable.hpp"
 #include "services/gnss_link/realtime_pacer.hpp"
 #include "services/runtime/service_runtime.hpp"
 

@@ -3,7 +3,7 @@
 #include <optional>
 #include <string>
 
-#include "services/gnss_link/input/byte_source_options.hpp"
+#include "services/input/byte_source_options.hpp"
 #include "services/imu_acq/imu_correction.hpp"
 #include "services/imu_acq/imu_time_stamper.hpp"
 

@@ -12,8 +12,8 @@
 #include <ldv_lcm/pps_event_t.hpp>
 
 #include "common/logging.hpp"
-#include "services/gnss_link/gnss_messages.hpp"
-#include "services/gnss_link/input/wait_readable.hpp"
+#include "common/bus/gnss_messages.hpp"
+#include "services/input/wait_readable.hpp"
 #include "services/imu_acq/imu_acq_options.hpp"
 #include "services/imu_acq/protocols/gx2_decoder.hpp"
 #include "services/imu_acq/protocols/tsu_decoder.hpp"

@@ -8,8 +8,8 @@
 
 #include "common/geo/earth_model.hpp"
 #include "common/io/input_error.hpp"
-#include "services/gnss_link/protocols/rtklib_solution.hpp"
-#include "services/gnss_link/protocols/rtklib_solution_stream.hpp"
+#include "common/formats/rtklib_solution.hpp"
+#include "common/formats/rtklib_solution_stream.hpp"
 
 using namespace ldv;
 using namespace ldv::gnss;

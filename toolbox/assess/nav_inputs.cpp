@@ -8,8 +8,8 @@
 #include "common/formats/tagged_imu_csv.hpp"
 #include "common/io/input_error.hpp"
 #include "estimator/run/run_navigation.hpp"
-#include "services/gnss_link/protocols/rtklib_solution.hpp"
-#include "toolbox/calib/imu_calibration.hpp"
+#include "common/formats/rtklib_solution.hpp"
+#include "common/formats/imu_calibration.hpp"
 
 namespace ldv::assess {
 namespace {

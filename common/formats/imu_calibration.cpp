@@ -1,4 +1,4 @@
-#include "toolbox/calib/imu_calibration.hpp"
+#include "common/formats/imu_calibration.hpp"
 
 #include <yaml-cpp/yaml.h>
 

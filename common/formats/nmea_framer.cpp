@@ -1,4 +1,4 @@
-#include "services/gnss_link/protocols/nmea_framer.hpp"
+#include "common/formats/nmea_framer.hpp"
 
 namespace ldv::gnss {
 namespace {

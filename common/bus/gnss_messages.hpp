@@ -5,7 +5,7 @@
 #include <ldv_lcm/gnss_solution_t.hpp>
 #include <ldv_lcm/pps_event_t.hpp>
 
-#include "services/gnss_link/protocols/gnss_solution.hpp"
+#include "common/formats/gnss_solution.hpp"
 
 namespace ldv::gnss {
 

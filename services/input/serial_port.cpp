@@ -1,4 +1,4 @@
-#include "services/gnss_link/input/serial_port.hpp"
+#include "services/input/serial_port.hpp"
 
 #include <fcntl.h>
 #include <poll.h>

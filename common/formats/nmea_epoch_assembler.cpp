@@ -1,4 +1,4 @@
-#include "services/gnss_link/protocols/nmea_epoch_assembler.hpp"
+#include "common/formats/nmea_epoch_assembler.hpp"
 
 #include <algorithm>
 #include <cmath>

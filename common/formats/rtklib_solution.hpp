@@ -13,7 +13,7 @@
 #include <string_view>
 #include <vector>
 
-#include "services/gnss_link/protocols/gnss_solution.hpp"
+#include "common/formats/gnss_solution.hpp"
 
 namespace ldv::gnss {
 

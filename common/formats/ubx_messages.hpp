@@ -7,7 +7,7 @@
 #include <optional>
 #include <span>
 
-#include "services/gnss_link/protocols/gnss_solution.hpp"
+#include "common/formats/gnss_solution.hpp"
 
 namespace ldv::gnss {
 

@@ -1,4 +1,4 @@
-#include "services/gnss_link/input/file_source.hpp"
+#include "services/input/file_source.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>

@@ -4,7 +4,7 @@
 // drive it. Reopened with backoff when the device disappears (USB unplug, pty master closed).
 #include <string>
 
-#include "services/gnss_link/input/byte_source.hpp"
+#include "services/input/byte_source.hpp"
 
 namespace ldv::io {
 

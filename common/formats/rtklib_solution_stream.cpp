@@ -1,4 +1,4 @@
-#include "services/gnss_link/protocols/rtklib_solution_stream.hpp"
+#include "common/formats/rtklib_solution_stream.hpp"
 
 namespace ldv::gnss {
 

@@ -3,7 +3,7 @@
 // knows the epochs in the data, see RealTimePacer); the file only hands out chunks.
 #include <string>
 
-#include "services/gnss_link/input/byte_source.hpp"
+#include "services/input/byte_source.hpp"
 
 namespace ldv::io {
 

@@ -1,4 +1,4 @@
-#include "services/gnss_link/protocols/rtklib_solution.hpp"
+#include "common/formats/rtklib_solution.hpp"
 
 #include <charconv>
 #include <cstdio>

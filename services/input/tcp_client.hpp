@@ -4,7 +4,7 @@
 // when the server is absent or closes the connection.
 #include <string>
 
-#include "services/gnss_link/input/byte_source.hpp"
+#include "services/input/byte_source.hpp"
 
 namespace ldv::io {
 

@@ -1,4 +1,4 @@
-#include "services/gnss_link/protocols/nmea_sentences.hpp"
+#include "common/formats/nmea_sentences.hpp"
 
 #include <charconv>
 #include <cmath>

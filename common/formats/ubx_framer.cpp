@@ -1,4 +1,4 @@
-#include "services/gnss_link/protocols/ubx_framer.hpp"
+#include "common/formats/ubx_framer.hpp"
 
 namespace ldv::gnss {
 namespace {

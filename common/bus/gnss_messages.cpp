@@ -1,4 +1,4 @@
-#include "services/gnss_link/gnss_messages.hpp"
+#include "common/bus/gnss_messages.hpp"
 
 #include <cmath>
 #include <numbers>

@@ -1,4 +1,4 @@
-#include "services/gnss_link/input/tcp_client.hpp"
+#include "services/input/tcp_client.hpp"
 
 #include <arpa/inet.h>
 #include <fcntl.h>

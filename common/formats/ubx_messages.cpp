@@ -1,4 +1,4 @@
-#include "services/gnss_link/protocols/ubx_messages.hpp"
+#include "common/formats/ubx_messages.hpp"
 
 #include <cmath>
 #include <numbers>

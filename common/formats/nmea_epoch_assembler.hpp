@@ -8,8 +8,8 @@
 #include <optional>
 #include <string_view>
 
-#include "services/gnss_link/protocols/gnss_solution.hpp"
-#include "services/gnss_link/protocols/nmea_sentences.hpp"
+#include "common/formats/gnss_solution.hpp"
+#include "common/formats/nmea_sentences.hpp"
 
 namespace ldv::gnss {
 

@@ -10,9 +10,9 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "services/gnss_link/input/file_source.hpp"
-#include "services/gnss_link/input/serial_port.hpp"
-#include "services/gnss_link/input/tcp_client.hpp"
+#include "services/input/file_source.hpp"
+#include "services/input/serial_port.hpp"
+#include "services/input/tcp_client.hpp"
 
 namespace ldv::io {
 

@@ -1,4 +1,4 @@
-#include "services/gnss_link/input/byte_source_options.hpp"
+#include "services/input/byte_source_options.hpp"
 
 #include <stdexcept>
 

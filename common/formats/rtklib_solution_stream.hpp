@@ -6,7 +6,7 @@
 #include <span>
 #include <string>
 
-#include "services/gnss_link/protocols/rtklib_solution.hpp"
+#include "common/formats/rtklib_solution.hpp"
 
 namespace ldv::gnss {
 
