@@ -1,11 +1,11 @@
-#include "toolbox/allan/chi_square.hpp"
+#include "common/math/chi_square.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
-namespace ldv::allan {
+namespace ldv::math {
 namespace {
 
 // Series for P(a, x), good for x < a + 1.
@@ -102,4 +102,4 @@ double chi_square_quantile(double p, double dof) {
   return x;
 }
 
-}  // namespace ldv::allan
+}  // namespace ldv::math

@@ -1,6 +1,7 @@
 #pragma once
-// Chi-square distribution for confidence intervals (our own: no Boost dependency).
-namespace ldv::allan {
+// Chi-square distribution (our own: no Boost dependency): the estimator's innovation gate, the Allan
+// confidence intervals and the diagnosis's tests all use this one.
+namespace ldv::math {
 
 // Regularized lower incomplete gamma P(a, x), a > 0, x >= 0.
 double regularized_gamma_p(double a, double x);
@@ -15,4 +16,4 @@ double chi_square_quantile(double p, double dof);
 // Inverse standard normal CDF (Acklam's rational approximation refined by one Halley step).
 double normal_quantile(double p);
 
-}  // namespace ldv::allan
+}  // namespace ldv::math
