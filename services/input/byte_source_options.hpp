@@ -8,8 +8,7 @@
 #include <memory>
 #include <string>
 
-#include <yaml-cpp/yaml.h>
-
+#include "common/config/config_section.hpp"
 #include "services/input/file_source.hpp"
 #include "services/input/serial_port.hpp"
 #include "services/input/tcp_client.hpp"
@@ -24,9 +23,9 @@ struct ByteSourceOptions {
   double file_speed_factor = 0.0;
 };
 
-// Reads the `input:` node (absent keys keep their defaults). Throws std::runtime_error naming
-// the bad key.
-ByteSourceOptions byte_source_options_from_yaml(const YAML::Node& input, const std::string& where);
+// Reads the `input:` section over `defaults` (absent keys keep them). Throws config::ConfigError naming
+// the file, line and key.
+ByteSourceOptions byte_source_options_from(config::ConfigSection input, ByteSourceOptions defaults = {});
 
 std::unique_ptr<ByteSource> make_byte_source(const ByteSourceOptions& o);
 
