@@ -4,11 +4,13 @@
 #include <cstdio>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <numbers>
 
 #include "common/geo/earth_model.hpp"
 #include "common/io/input_error.hpp"
 #include "common/io/text_table.hpp"
+#include "common/logging.hpp"
 
 namespace ldv::gnss {
 namespace {
@@ -201,6 +203,10 @@ RtklibSolutionParser::LineKind RtklibSolutionParser::parse_line(std::string_view
     }
     case RtklibPositionLayout::kUnknown: return malformed("unknown layout");
   }
+  // The file's own sigmas (sdn sde sdu, or sdx sdy sdz): a zero or negative one is no solution RTKLIB writes
+  // (it prints sqrt of a variance), and would make the filter refuse, or trust blindly, every fix.
+  if (!(v[5] > 0.0 && v[6] > 0.0 && v[7] > 0.0)) return malformed("position sigma not positive");
+  if (has_velocity && (v[16] < 0.0 || v[17] < 0.0 || v[18] < 0.0)) return malformed("velocity sigma negative");
   s.pos_cov_ned_m2 = R_to_ned * cov_pos * R_to_ned.transpose();
   sync_std_from_cov(s);
   if (has_velocity) {
@@ -212,22 +218,39 @@ RtklibSolutionParser::LineKind RtklibSolutionParser::parse_line(std::string_view
   return LineKind::kSolution;
 }
 
-std::vector<GnssSolution> read_rtklib_pos(const std::string& path, RtklibParserOptions options) {
+std::string RtklibReadReport::summary() const {
+  std::string s = std::to_string(solutions) + " solutions";
+  for (const auto& [why, count] : malformed_by_reason) s += ", " + std::to_string(count) + " malformed (" + why + ")";
+  return s;
+}
+
+std::vector<GnssSolution> read_rtklib_pos(const std::string& path, RtklibParserOptions options,
+                                          RtklibReadReport* report) {
   std::ifstream in(path);
   if (!in) throw InputError(path, 0, "cannot open file for reading");
   RtklibSolutionParser parser(std::move(options));
   std::vector<GnssSolution> out;
+  RtklibReadReport rep;
   std::string line, why;
-  long line_no = 0;
+  long line_no = 0, first_malformed_line = 0;
+  std::string first_why;
   GnssSolution s;
+  constexpr long kLoggedLines = 10;  // each malformed line up to this many, then only the counts
   while (std::getline(in, line)) {
     ++line_no;
     const auto kind = parser.parse_line(line, s, &why);
     if (kind == RtklibSolutionParser::LineKind::kMalformed) {
-      throw InputError(path, line_no, "RTKLIB solution line: " + why);
+      if (rep.malformed() < kLoggedLines) spdlog::warn("{}:{}: RTKLIB solution line skipped: {}", path, line_no, why);
+      if (rep.malformed() == 0) first_malformed_line = line_no, first_why = why;
+      ++rep.malformed_by_reason[why];
     }
     if (kind == RtklibSolutionParser::LineKind::kSolution) out.push_back(s);
   }
+  rep.solutions = static_cast<long>(out.size());
+  if (rep.malformed() > kLoggedLines) spdlog::warn("{}: {}", path, rep.summary());
+  if (out.empty() && rep.malformed() > 0)
+    throw InputError(path, first_malformed_line, "RTKLIB solution line: " + first_why + "; no usable solution (" + rep.summary() + ")");
+  if (report) *report = rep;
   return out;
 }
 

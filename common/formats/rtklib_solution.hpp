@@ -8,6 +8,7 @@
 //   its six covariance terms.
 // Header lines ('%') set the layout; without a header (a TCP client that joined late) the layout
 // is inferred from the data: calendar vs week/tow from the '/', ECEF vs lat/lon from magnitude.
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -44,7 +45,22 @@ class RtklibSolutionParser {
   std::vector<std::string_view> fields_;
 };
 
-// Reads a whole .pos file. Throws InputError (file, line, what) on the first malformed line.
-std::vector<GnssSolution> read_rtklib_pos(const std::string& path, RtklibParserOptions options = {});
+// What read_rtklib_pos skipped: malformed lines counted by reason (each of the first ten is logged with
+// its file:line).
+struct RtklibReadReport {
+  long solutions = 0;
+  std::map<std::string, long> malformed_by_reason;
+  long malformed() const {
+    long n = 0;
+    for (const auto& [why, count] : malformed_by_reason) n += count;
+    return n;
+  }
+  std::string summary() const;  // "118 solutions, 2 malformed (position sigma not positive)"
+};
+
+// Reads a whole .pos file, in file order. Malformed lines (also non-positive sigmas) are skipped and
+// counted; a file whose lines are all malformed throws InputError naming the first one's line and the counts.
+std::vector<GnssSolution> read_rtklib_pos(const std::string& path, RtklibParserOptions options = {},
+                                          RtklibReadReport* report = nullptr);
 
 }  // namespace ldv::gnss

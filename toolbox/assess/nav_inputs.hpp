@@ -50,7 +50,10 @@ struct NavInputs {
   std::vector<GnssFix> gnss;
   std::string description;  // one line for the log
   std::string imu_note;     // what the IMU reader skipped or assumed
-  int gps_week = -1;        // from a .pos file, else -1
+  std::string gnss_note;    // what the .pos reader skipped or reordered
+  // From a .pos file (its earliest week), else -1. .pos fix times are seconds since the start of this week,
+  // continuous across a week rollover (past 604800 s).
+  int gps_week = -1;
 };
 
 // The configuration and the filter options with the command line's model changes, no data read (the
