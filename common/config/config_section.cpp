@@ -103,8 +103,7 @@ void ConfigSection::fail(const std::string& key, const std::string& what) const 
 }
 
 YAML::Node ConfigSection::value(const std::string& key) {
-  if (std::find(state_->known.begin(), state_->known.end(), key) == state_->known.end())
-    state_->known.push_back(key);
+  if (std::find(state_->known.begin(), state_->known.end(), key) == state_->known.end()) state_->known.push_back(key);
   if (!state_->node.IsMap()) return YAML::Node();
   // Iterating (not operator[]) keeps a const view: operator[] on a missing key would add it.
   for (auto it = state_->node.begin(); it != state_->node.end(); ++it)
@@ -125,7 +124,8 @@ double ConfigSection::number(const std::string& key, double fallback, Range rang
     if (!v.IsScalar()) throw YAML::BadConversion(v.Mark());
     x = v.as<double>();
   } catch (const YAML::BadConversion&) {
-    fail(key, "expected a number " + range.describe() + ", found '" + (v.IsScalar() ? v.Scalar() : "a list or map") + "'");
+    fail(key,
+         "expected a number " + range.describe() + ", found '" + (v.IsScalar() ? v.Scalar() : "a list or map") + "'");
   }
   if (!std::isfinite(x) || !range.contains(x))
     fail(key, "expected a number " + range.describe() + ", found " + v.Scalar());

@@ -12,13 +12,13 @@
 //   root.refuse_unknown();                                // after every read, recursively
 //
 // Numbers must be finite (YAML's .nan and .inf are refused) and inside their Range.
+#include <yaml-cpp/yaml.h>
+
 #include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <yaml-cpp/yaml.h>
 
 namespace ldv::config {
 

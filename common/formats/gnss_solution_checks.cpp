@@ -30,8 +30,8 @@ std::optional<std::string> implausibility(const GnssSolution& s) {
   if (!std::isfinite(f.pos.lon_rad) || std::abs(f.pos.lon_rad) > 2 * kPi)
     return "longitude " + num(f.pos.lon_rad * 180.0 / kPi) + " deg not in [-360, 360]";
   if (!std::isfinite(f.pos.h_m) || f.pos.h_m < kMinPlausibleHeight_m || f.pos.h_m > kMaxPlausibleHeight_m)
-    return "height " + num(f.pos.h_m) + " m not in [" + num(kMinPlausibleHeight_m) + ", " +
-           num(kMaxPlausibleHeight_m) + "]";
+    return "height " + num(f.pos.h_m) + " m not in [" + num(kMinPlausibleHeight_m) + ", " + num(kMaxPlausibleHeight_m) +
+           "]";
   if (!s.pos_cov_ned_m2.allFinite() || !(s.pos_cov_ned_m2.diagonal().array() > 0.0).all())
     return "position variances (" + num(s.pos_cov_ned_m2(0, 0)) + ", " + num(s.pos_cov_ned_m2(1, 1)) + ", " +
            num(s.pos_cov_ned_m2(2, 2)) + ") m^2 not positive and finite";

@@ -10,7 +10,6 @@
 //    accepted IMU sample (a fix arrives after its epoch, never long before the IMU reaches it).
 // Every refusal is counted by reason.
 #include <cstdint>
-
 #include <ldv_lcm/gnss_solution_t.hpp>
 #include <ldv_lcm/imu_sample_t.hpp>
 
@@ -26,11 +25,11 @@ struct FusionInputOptions {
 
 enum class InputVerdict {
   kAccepted,
-  kNotFinite,      // is_valid failed: NaN, infinity, a non-positive variance or interval
-  kNotGpsTime,     // IMU stamped from the host clock (skipped, not malformed: imu_acq not locked yet)
-  kDeviceError,    // IMU status bit 1
-  kTooFarAhead,    // stamped ahead of the stream's time (a bad stamp)
-  kNotAfterLast,   // IMU stamped at or before the last accepted sample
+  kNotFinite,     // is_valid failed: NaN, infinity, a non-positive variance or interval
+  kNotGpsTime,    // IMU stamped from the host clock (skipped, not malformed: imu_acq not locked yet)
+  kDeviceError,   // IMU status bit 1
+  kTooFarAhead,   // stamped ahead of the stream's time (a bad stamp)
+  kNotAfterLast,  // IMU stamped at or before the last accepted sample
 };
 
 struct FusionInputCounters {

@@ -20,8 +20,10 @@ class MessageTimeGate {
     if (!(t_s > last_s_)) return Verdict::kNotAfterLast;
     if (t_s - last_s_ <= max_ahead_s_) return accept(t_s);
     // Ahead: does it continue a run of messages ahead (a real jump) or start one?
-    if (run_length_ > 0 && t_s > run_last_s_ && t_s - run_last_s_ <= max_ahead_s_) ++run_length_;
-    else run_length_ = 1;
+    if (run_length_ > 0 && t_s > run_last_s_ && t_s - run_last_s_ <= max_ahead_s_)
+      ++run_length_;
+    else
+      run_length_ = 1;
     run_last_s_ = t_s;
     if (run_length_ >= confirmations_) {
       ++jumps_followed_;

@@ -45,8 +45,8 @@ NavInputs load(const std::string& pos_text) {
 }  // namespace
 
 TEST(NavInputsPos, GivenAWeekRollover_ThenEveryFixIsKeptOnContinuousTime) {
-  const NavInputs in = load(pos_line(2300, 604798.0) + pos_line(2300, 604799.0) + pos_line(2301, 0.0) +
-                            pos_line(2301, 1.0));
+  const NavInputs in =
+      load(pos_line(2300, 604798.0) + pos_line(2300, 604799.0) + pos_line(2301, 0.0) + pos_line(2301, 1.0));
   ASSERT_EQ(in.gnss.size(), 4u);
   EXPECT_EQ(in.gps_week, 2300);
   EXPECT_DOUBLE_EQ(in.gnss[2].t_s, 604800.0);  // week 2301 sow 0 = 604800 s after the start of week 2300
@@ -68,8 +68,8 @@ TEST(NavInputsPos, GivenOneRecordStampedAhead_ThenTheLaterFixesAreNotDroppedAsRe
 }
 
 TEST(NavInputsPos, GivenNonPositiveSigmas_ThenThoseRecordsAreMalformedAndCountedByReason) {
-  const NavInputs in = load(pos_line(2300, 100.0) + pos_line(2300, 101.0, 0.0) + pos_line(2300, 102.0, -0.01) +
-                            pos_line(2300, 103.0));
+  const NavInputs in =
+      load(pos_line(2300, 100.0) + pos_line(2300, 101.0, 0.0) + pos_line(2300, 102.0, -0.01) + pos_line(2300, 103.0));
   ASSERT_EQ(in.gnss.size(), 2u);
   EXPECT_DOUBLE_EQ(in.gnss[1].t_s, 103.0);
   EXPECT_NE(in.gnss_note.find("2 malformed (position sigma not positive)"), std::string::npos) << in.gnss_note;

@@ -26,7 +26,8 @@ std::string error_of(const std::function<void()>& f) {
 }  // namespace
 
 TEST(ConfigSection, GivenValidKeys_ThenTypedValuesAndDefaultsAreRead) {
-  ConfigSection root = ConfigSection::load(write_temp("ok.yaml", "rate_hz: 50\ntspi:\n  group: 239.255.77.1\n  ttl: 3\n"));
+  ConfigSection root =
+      ConfigSection::load(write_temp("ok.yaml", "rate_hz: 50\ntspi:\n  group: 239.255.77.1\n  ttl: 3\n"));
   EXPECT_DOUBLE_EQ(root.number("rate_hz", 1.0, Range::above(0.0).up_to(1000.0)), 50.0);
   EXPECT_DOUBLE_EQ(root.number("absent_s", 2.5), 2.5);
   ConfigSection t = root.section("tspi");
@@ -52,8 +53,7 @@ TEST(ConfigSection, GivenAMisspeltKey_ThenRefuseUnknownNamesItsLineAndTheNearest
   ConfigSection t = root.section("tspi");
   t.number("rate_hz", 50.0);
   t.text("channel", "TSPI");
-  EXPECT_EQ(error_of([&] { root.refuse_unknown(); }),
-            path + ":3: unknown key 'tspi.chanel' (did you mean 'channel'?)");
+  EXPECT_EQ(error_of([&] { root.refuse_unknown(); }), path + ":3: unknown key 'tspi.chanel' (did you mean 'channel'?)");
 }
 
 TEST(ConfigSection, GivenAWrongType_ThenTheErrorSaysWhatWasExpected) {
@@ -61,9 +61,13 @@ TEST(ConfigSection, GivenAWrongType_ThenTheErrorSaysWhatWasExpected) {
   ConfigSection root = ConfigSection::load(path);
   EXPECT_EQ(error_of([&] { root.integer("ttl", 1, 0, 255); }),
             path + ":1: ttl: expected an integer in [0, 255], found 'three'");
-  EXPECT_EQ(error_of([&] { root.choice("mode", "fast", {"fast", "slow"}); }),
+  EXPECT_EQ(error_of([&] {
+              root.choice("mode", "fast", {"fast", "slow"});
+            }),
             path + ":2: mode: expected one of fast, slow, found 'fastest'");
-  EXPECT_EQ(error_of([&] { root.numbers("rpy", {0, 0, 0}, 3); }),
+  EXPECT_EQ(error_of([&] {
+              root.numbers("rpy", {0, 0, 0}, 3);
+            }),
             path + ":3: rpy: expected a list of 3 numbers finite");
 }
 
