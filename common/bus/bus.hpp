@@ -80,28 +80,52 @@ class Bus {
   int64_t malformed_ = 0;
 };
 
-// Counts lost messages from the sequence numbers of one publisher (a restart of the publisher,
-// seq going back to 0, is a reset, not a loss).
+// Counts lost messages from the sequence numbers of one publisher. A sequence number that breaks the
+// order (a jump forward or back) is believed only when the next message continues from it: one corrupt
+// or stray number then costs nothing, instead of a huge "loss" kept in the heartbeat for good. A confirmed
+// jump back (the publisher restarted at 0) or forward by more than kMaxCountedGap is a reset, not a loss.
 class SequenceTracker {
  public:
-  // Returns the number of messages missing before this one.
+  static constexpr int64_t kMaxCountedGap = 1'000'000;  // ~30 min of a 600 Hz stream
+
+  // Returns the number of messages found missing with this one (a gap is counted when confirmed).
   int64_t observe(int64_t seq) {
-    int64_t missing = 0;
-    if (has_last_ && seq > last_ + 1) missing = seq - last_ - 1;
-    if (has_last_ && seq <= last_) ++resets_;
-    last_ = seq;
-    has_last_ = true;
     ++received_;
-    lost_ += missing;
-    return missing;
+    if (!has_last_) {
+      has_last_ = true;
+      last_ = seq;
+      return 0;
+    }
+    if (seq == last_ + 1) {  // in order; a pending outlier was a stray number
+      if (has_pending_) ++outliers_;
+      has_pending_ = false;
+      last_ = seq;
+      return 0;
+    }
+    if (has_pending_ && seq == pending_ + 1) {  // the break is confirmed
+      has_pending_ = false;
+      const int64_t from = last_;
+      last_ = seq;
+      if (pending_ > from && pending_ - from - 1 <= kMaxCountedGap) {
+        lost_ += pending_ - from - 1;
+        return pending_ - from - 1;
+      }
+      ++resets_;
+      return 0;
+    }
+    if (has_pending_) ++outliers_;  // two breaks in a row: the first was stray
+    has_pending_ = true;
+    pending_ = seq;
+    return 0;
   }
   int64_t received() const { return received_; }
   int64_t lost() const { return lost_; }
   int64_t resets() const { return resets_; }
+  int64_t outliers() const { return outliers_; }  // numbers that broke the order and were not confirmed
 
  private:
-  bool has_last_ = false;
-  int64_t last_ = 0, received_ = 0, lost_ = 0, resets_ = 0;
+  bool has_last_ = false, has_pending_ = false;
+  int64_t last_ = 0, pending_ = 0, received_ = 0, lost_ = 0, resets_ = 0, outliers_ = 0;
 };
 
 }  // namespace ldv

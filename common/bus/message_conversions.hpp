@@ -19,6 +19,9 @@ ldv_lcm::gnss_solution_t message_from_gnss(const GnssFix& g, int gps_week, int64
 // sample is not on the GPS time scale: navigation and exports skip it. (Bit 2, holdover from a previous or
 // saved fit, is GPS time.)
 constexpr int32_t kImuStatusTimeExtrapolated = 1 << 0;
+// imu_sample_t.status bit 1: the device flagged this sample in error (saturation, failed built-in test):
+// its increments are not measurements, so navigation does not integrate them.
+constexpr int32_t kImuStatusDeviceError = 1 << 1;
 inline bool has_gps_time(const ldv_lcm::imu_sample_t& m) { return (m.status & kImuStatusTimeExtrapolated) == 0; }
 
 // True when every number in the message is finite and the std/quality fields are plausible.

@@ -8,7 +8,7 @@
 
 #include "common/geo/earth_model.hpp"
 #include "estimator/filter/nav_error_dynamics.hpp"
-#include "estimator/update/chi_square.hpp"
+#include "common/math/chi_square.hpp"
 #include "estimator/update/gnss_position.hpp"
 #include "estimator/update/gnss_velocity.hpp"
 #include "estimator/update/kalman_update.hpp"
@@ -66,7 +66,7 @@ NavFilter::NavFilter(FilterOptions options)
     J_gyro_.push_back(Mat3X::Zero(3, b.dim));
     J_accel_.push_back(Mat3X::Zero(3, b.dim));
   }
-  gate_ = chi_square_quantile(opt_.gate_probability, 3);
+  gate_ = math::chi_square_quantile(opt_.gate_probability, 3);
 }
 
 void NavFilter::initialize(const NavState& s, const NavStd& std) {

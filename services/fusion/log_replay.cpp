@@ -3,6 +3,7 @@
 #include "common/bus/lcm_log_reader.hpp"
 #include "common/bus/message_conversions.hpp"
 #include "common/io/input_error.hpp"
+#include "services/fusion/fusion_input_gate.hpp"
 
 namespace ldv {
 
@@ -13,22 +14,30 @@ LogReplaySummary replay_fusion_log(const std::string& log_path, FusionEngine& en
   LogReplaySummary sum;
   std::vector<FusionOutput> outs;
   double last_arrival_s = 0;
+  FusionInputOptions gate_options;  // the live service's defaults
+  gate_options.host_clock_imu = host_clock_imu;
+  FusionInputGate gate(gate_options);
   LcmLogEvent ev;
   while (log.next(ev)) {
     const double arrival_s = ev.timestamp_us * 1e-6;  // logger receive time [us] -> s
     last_arrival_s = arrival_s;
     if (ev.channel == imu_channel) {
       ldv_lcm::imu_sample_t m;
-      if (m.decode(ev.data.data(), 0, static_cast<int>(ev.data.size())) < 0 || !is_valid(m)) {
+      if (m.decode(ev.data.data(), 0, static_cast<int>(ev.data.size())) < 0) {
+        ++sum.malformed;
+        continue;
+      }
+      const InputVerdict v = gate.check(m);  // as the live service
+      if (v != InputVerdict::kAccepted && v != InputVerdict::kNotGpsTime) {
         ++sum.malformed;
         continue;
       }
       ++sum.imu_messages;
-      if (!host_clock_imu && !has_gps_time(m)) continue;  // as the live service: not on GPS time yet
+      if (v == InputVerdict::kNotGpsTime) continue;
       engine.on_imu(imu_from_message(m), m.gps_week, arrival_s, outs);
     } else if (ev.channel == gnss_channel) {
       ldv_lcm::gnss_solution_t m;
-      if (m.decode(ev.data.data(), 0, static_cast<int>(ev.data.size())) < 0 || !is_valid(m)) {
+      if (m.decode(ev.data.data(), 0, static_cast<int>(ev.data.size())) < 0 || gate.check(m) != InputVerdict::kAccepted) {
         ++sum.malformed;
         continue;
       }

@@ -5,17 +5,18 @@
 #include <thread>
 
 #include <CLI/CLI.hpp>
-#include <yaml-cpp/yaml.h>
 
 #include <ldv_lcm/nav_innovation_t.hpp>
 #include <ldv_lcm/nav_state_t.hpp>
 
 #include "common/bus/message_conversions.hpp"
+#include "common/config/config_section.hpp"
 #include "common/formats/kfgins_config.hpp"
 #include "common/logging.hpp"
 #include "estimator/run/alignment_options_from.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "services/fusion/fusion_engine.hpp"
+#include "services/fusion/fusion_input_gate.hpp"
 #include "services/fusion/nav_message.hpp"
 #include "services/runtime/service_runtime.hpp"
 
@@ -30,19 +31,25 @@ struct FusionConfig {
   // IMU samples stamped from the host clock (imu_acq status bit 0) are skipped: they are not on GPS time.
   // An IMU without PPS (imu_acq pps.source: none) has only those: then set this.
   bool host_clock_imu = false;
+  double imu_max_ahead_s = 1.0;   // FusionInputOptions
+  double gnss_max_ahead_s = 2.0;
 };
 
 FusionConfig load_config(const std::string& path) {
+  using ldv::config::Range;
   FusionConfig c;
   if (path.empty()) return c;
-  const YAML::Node y = YAML::LoadFile(path);
-  if (y["bus_url"]) c.bus_url = y["bus_url"].as<std::string>();
-  if (y["kfgins_config"]) c.kfgins_config = y["kfgins_config"].as<std::string>();
-  if (y["align_wait_s"]) c.align_wait_s = y["align_wait_s"].as<double>();
-  if (y["history_s"]) c.history_s = y["history_s"].as<double>();
-  if (y["state_file"]) c.state_file = y["state_file"].as<std::string>();
-  if (y["warm_start_max_age_s"]) c.warm_start_max_age_s = y["warm_start_max_age_s"].as<double>();
-  if (y["host_clock_imu"]) c.host_clock_imu = y["host_clock_imu"].as<bool>();
+  ldv::config::ConfigSection y = ldv::config::ConfigSection::load(path);
+  c.bus_url = y.text("bus_url", c.bus_url);
+  c.kfgins_config = y.text("kfgins_config", c.kfgins_config);
+  c.align_wait_s = y.number("align_wait_s", c.align_wait_s, Range::at_least(0.0).up_to(3600.0));
+  c.history_s = y.number("history_s", c.history_s, Range::at_least(0.0).up_to(60.0));
+  c.state_file = y.text("state_file", c.state_file);
+  c.warm_start_max_age_s = y.number("warm_start_max_age_s", c.warm_start_max_age_s, Range::above(0.0));
+  c.host_clock_imu = y.flag("host_clock_imu", c.host_clock_imu);
+  c.imu_max_ahead_s = y.number("imu_max_ahead_s", c.imu_max_ahead_s, Range::above(0.0).up_to(60.0));
+  c.gnss_max_ahead_s = y.number("gnss_max_ahead_s", c.gnss_max_ahead_s, Range::above(0.0).up_to(60.0));
+  y.refuse_unknown();
   return c;
 }
 }  // namespace
@@ -103,14 +110,24 @@ int main(int argc, char** argv) {
       }
     };
 
+    ldv::FusionInputGate gate({cfg.host_clock_imu, cfg.imu_max_ahead_s, cfg.gnss_max_ahead_s});
+    double last_refusal_s = -1e300;
+    // Refused input is counted (heartbeat: malformed) and logged once per reason change, never fatal.
+    ldv::InputVerdict last_logged = ldv::InputVerdict::kAccepted;
+    auto refused = [&](ldv::InputVerdict v, const char* channel, int week, double sow_s) {
+      if (v == ldv::InputVerdict::kAccepted) return false;
+      if (v == ldv::InputVerdict::kNotGpsTime) return true;  // imu_acq not on GPS time yet (before its PPS fit)
+      ++rt.counters().malformed;
+      last_refusal_s = ldv::host_time_s();
+      if (v != last_logged) spdlog::warn("fusion: {} message (week {}, {:.3f} s) refused: {}", channel, week, sow_s, ldv::describe(v));
+      last_logged = v;
+      return true;
+    };
+
     rt.bus().subscribe<ldv_lcm::imu_sample_t>("IMU", [&](const ldv_lcm::imu_sample_t& m, const std::string&) {
       ++rt.counters().received;
       rt.counters().dropped += imu_seq.observe(m.seq);
-      if (!ldv::is_valid(m)) {
-        ++rt.counters().malformed;
-        return;
-      }
-      if (!cfg.host_clock_imu && !ldv::has_gps_time(m)) return;  // imu_acq not on GPS time yet (before its PPS fit)
+      if (refused(gate.check(m), "IMU", m.gps_week, m.gps_sow_s)) return;
       last_week = m.gps_week;
       engine.on_imu(ldv::imu_from_message(m), m.gps_week, ldv::host_time_s(), outputs);
       publish(outputs);
@@ -118,10 +135,7 @@ int main(int argc, char** argv) {
     rt.bus().subscribe<ldv_lcm::gnss_solution_t>("GNSS_SOLUTION", [&](const ldv_lcm::gnss_solution_t& m, const std::string&) {
       ++rt.counters().received;
       rt.counters().dropped += gnss_seq.observe(m.seq);
-      if (!ldv::is_valid(m)) {
-        ++rt.counters().malformed;
-        return;
-      }
+      if (refused(gate.check(m), "GNSS_SOLUTION", m.gps_week, m.gps_sow_s)) return;
       engine.on_gnss(ldv::gnss_from_message(m), ldv::host_time_s());
     }, 1000);
 
@@ -131,7 +145,9 @@ int main(int argc, char** argv) {
       engine.on_idle(ldv::host_time_s(), outputs);
       publish(outputs);
       rt.counters().fault_bits = static_cast<int32_t>(engine.filter().status());
-      rt.set_state(engine.navigating() ? 1 : 0);
+      // Degraded while input was refused in the last 10 s: running, but not on every message.
+      const bool refusing = ldv::host_time_s() - last_refusal_s < 10.0;
+      rt.set_state(!engine.navigating() ? 0 : refusing ? 2 : 1);
       rt.tick();
       if (!cfg.state_file.empty() && engine.navigating() && ldv::host_time_s() >= next_save_s) {
         ldv::save_warm_state(cfg.state_file, {ldv::host_time_s(), engine.filter().state(), engine.filter().nav_std()});

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "services/gnss_link/gnss_stream_decoder.hpp"
-#include "services/gnss_link/input/byte_source_options.hpp"
+#include "services/input/byte_source_options.hpp"
 #include "services/gnss_link/jump_gate.hpp"
 
 namespace ldv::gnss {
@@ -20,7 +20,8 @@ struct GnssLinkOptions {
   std::string pps_channel = "GNSS_PPS";
 };
 
-// Empty path: the defaults. Throws std::runtime_error naming the file and the bad key.
+// Empty path: the defaults. Throws config::ConfigError (a std::runtime_error) naming the file, the line,
+// the key and what was expected; unknown keys are refused with the nearest valid one.
 GnssLinkOptions load_gnss_link_options(const std::string& path);
 
 }  // namespace ldv::gnss

@@ -1,6 +1,8 @@
 #include "services/gnss_link/gnss_stream_decoder.hpp"
 
-#include "services/gnss_link/protocols/ubx_messages.hpp"
+#include "common/formats/gnss_solution_checks.hpp"
+#include "common/formats/ubx_messages.hpp"
+#include "common/logging.hpp"
 
 namespace ldv::gnss {
 
@@ -66,14 +68,12 @@ void GnssStreamDecoder::on_nmea_solution(const GnssSolution& s) {
     ++duplicates_;
     return;
   }
-  ++solutions_;
-  on_solution_(s);
+  emit(s);
 }
 
 void GnssStreamDecoder::on_nmea_label(const PpsTimeLabel& l) {
   if (tim_tp_seen_) return;  // TIM-TP labels the same pulses with the receiver's own timing
-  ++labels_;
-  if (on_label_) on_label_(l);
+  emit(l);
 }
 
 void GnssStreamDecoder::on_ubx_frame(const UbxFrame& f) {
@@ -84,27 +84,43 @@ void GnssStreamDecoder::on_ubx_frame(const UbxFrame& f) {
     nav_pvt_seen_ = true;
     // No fix yet (or no date) is a normal receiver state, not a malformed message.
     if (const auto s = solution_from_nav_pvt(*pvt)) {
-      ++solutions_;
-      on_solution_(*s);
+      emit(*s);
     }
   } else if (f.msg_class == kUbxClassTim && f.msg_id == kUbxIdTimTp) {
     const auto tp = decode_tim_tp(f.payload);
     if (!tp) return void(++ubx_undecodable_);
     tim_tp_seen_ = true;
     if (const auto label = label_from_tim_tp(*tp)) {
-      ++labels_;
-      if (on_label_) on_label_(*label);
+      emit(*label);
     }
   }
 }
 
 void GnssStreamDecoder::on_rtklib_solution(const GnssSolution& s) {
+  emit(s);
+}
+
+void GnssStreamDecoder::emit(const GnssSolution& s) {
+  if (const auto why = implausibility(s)) {
+    if (implausible_++ < kLoggedImplausible) spdlog::warn("gnss_link: solution dropped: {}", *why);
+    return;
+  }
   ++solutions_;
   on_solution_(s);
 }
 
+void GnssStreamDecoder::emit(const PpsTimeLabel& l) {
+  if (const auto why = implausibility(l)) {
+    if (implausible_++ < kLoggedImplausible) spdlog::warn("gnss_link: PPS label dropped: {}", *why);
+    return;
+  }
+  ++labels_;
+  if (on_label_) on_label_(l);
+}
+
 GnssDecoderCounters GnssStreamDecoder::counters() const {
   GnssDecoderCounters c;
+  c.implausible = implausible_;
   c.solutions = solutions_;
   c.labels = labels_;
   c.duplicates = duplicates_;

@@ -13,11 +13,11 @@
 #include <span>
 #include <string>
 
-#include "services/gnss_link/protocols/gnss_solution.hpp"
-#include "services/gnss_link/protocols/nmea_epoch_assembler.hpp"
-#include "services/gnss_link/protocols/nmea_framer.hpp"
-#include "services/gnss_link/protocols/rtklib_solution_stream.hpp"
-#include "services/gnss_link/protocols/ubx_framer.hpp"
+#include "common/formats/gnss_solution.hpp"
+#include "common/formats/nmea_epoch_assembler.hpp"
+#include "common/formats/nmea_framer.hpp"
+#include "common/formats/rtklib_solution_stream.hpp"
+#include "common/formats/ubx_framer.hpp"
 
 namespace ldv::gnss {
 
@@ -40,7 +40,9 @@ struct GnssDecoderCounters {
   std::uint64_t malformed = 0;         // undecodable fields / lines, overlong messages
   std::uint64_t garbage_bytes = 0;     // bytes outside any message of the active protocol(s)
   std::uint64_t duplicates = 0;        // NMEA solutions dropped because NAV-PVT gives them
-  std::uint64_t rejected_total() const { return bad_checksum + truncated + malformed; }
+  // Decoded but impossible (gnss_solution_checks.hpp: week, time of week, lat/lon/h, variances): dropped.
+  std::uint64_t implausible = 0;
+  std::uint64_t rejected_total() const { return bad_checksum + truncated + malformed + implausible; }
 };
 
 class GnssStreamDecoder {
@@ -65,6 +67,10 @@ class GnssStreamDecoder {
   void on_nmea_label(const PpsTimeLabel& l);
   void on_ubx_frame(const UbxFrame& f);
   void on_rtklib_solution(const GnssSolution& s);
+  // Every solution and label leaves through these: implausible ones are counted and dropped.
+  void emit(const GnssSolution& s);
+  void emit(const PpsTimeLabel& l);
+  static constexpr std::uint64_t kLoggedImplausible = 20;  // then only counted
 
   GnssDecoderOptions options_;
   SolutionHandler on_solution_;
@@ -76,7 +82,7 @@ class GnssStreamDecoder {
   bool feed_nmea_, feed_ubx_, feed_rtklib_;
   bool nav_pvt_seen_ = false, tim_tp_seen_ = false;
   bool ubx_frame_seen_ = false;  // auto: the port is a u-blox one
-  std::uint64_t ubx_undecodable_ = 0, duplicates_ = 0, solutions_ = 0, labels_ = 0;
+  std::uint64_t ubx_undecodable_ = 0, duplicates_ = 0, solutions_ = 0, labels_ = 0, implausible_ = 0;
 };
 
 }  // namespace ldv::gnss

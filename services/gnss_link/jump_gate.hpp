@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <deque>
 
-#include "services/gnss_link/protocols/gnss_solution.hpp"
+#include "common/formats/gnss_solution.hpp"
 
 namespace ldv::gnss {
 

@@ -10,8 +10,8 @@
 
 #include "common/logging.hpp"
 #include "services/gnss_link/gnss_link_options.hpp"
-#include "services/gnss_link/gnss_messages.hpp"
-#include "services/gnss_link/input/wait_readable.hpp"
+#include "common/bus/gnss_messages.hpp"
+#include "services/input/wait_readable.hpp"
 #include "services/gnss_link/realtime_pacer.hpp"
 #include "services/runtime/service_runtime.hpp"
 
@@ -116,9 +116,9 @@ int main(int argc, char** argv) {
     }
     const GnssDecoderCounters c = decoder.counters();
     spdlog::info("gnss_link: stopping ({} via {}: messages {}, solutions {} published {}, labels {}, bad checksum {}, "
-                 "truncated {}, malformed {}, jumps rejected {}, duplicates {}, garbage bytes {}, reconnects {})",
+                 "truncated {}, malformed {}, implausible {}, jumps rejected {}, duplicates {}, garbage bytes {}, reconnects {})",
                  source->describe(), decoder.active(), c.messages, c.solutions, solution_seq, c.labels, c.bad_checksum,
-                 c.truncated, c.malformed, gate.counters().jumps_rejected + gate.counters().time_rejected, c.duplicates,
+                 c.truncated, c.malformed, c.implausible, gate.counters().jumps_rejected + gate.counters().time_rejected, c.duplicates,
                  c.garbage_bytes, source->counters().disconnects);
   } catch (const std::exception& e) {
     spdlog::error("gnss_link: {}", e.what());

@@ -3,7 +3,7 @@
 #include <optional>
 #include <string>
 
-#include "services/gnss_link/input/byte_source_options.hpp"
+#include "services/input/byte_source_options.hpp"
 #include "services/imu_acq/imu_correction.hpp"
 #include "services/imu_acq/imu_time_stamper.hpp"
 
@@ -43,7 +43,8 @@ struct ImuAcqOptions {
               label_channel = "GNSS_PPS";
 };
 
-// Throws std::runtime_error naming the file and key on a bad value (for the calibration file: both files).
+// Throws config::ConfigError (a std::runtime_error) naming the file, line and key on a bad or unknown key
+// (for the calibration file: both files).
 ImuAcqOptions load_imu_acq_options(const std::string& path);
 
 }  // namespace ldv::imu

@@ -1,12 +1,12 @@
 #pragma once
 // The hook where raw device increments become body-frame (front-right-down) increments. In the order the
-// sensor model asks for (docs/effects.md; toolbox/calib/imu_calibration.hpp: meas = M true + bias, in the
+// sensor model asks for (docs/effects.md; common/formats/imu_calibration.hpp: meas = M true + bias, in the
 // device's axes, which are the ones `ldv calib static` saw):
 //   1. calibration, in the device frame: true_device = M^-1 (meas - bias * dt)
 //   2. mounting rotation: body = C_device_to_body * true_device
 // Identity and zero by default, so the published increments are the device's.
 #include "common/math/rotation.hpp"
-#include "toolbox/calib/imu_calibration.hpp"
+#include "common/formats/imu_calibration.hpp"
 
 namespace ldv::imu {
 

@@ -12,8 +12,9 @@
 #include <ldv_lcm/pps_event_t.hpp>
 
 #include "common/logging.hpp"
-#include "services/gnss_link/gnss_messages.hpp"
-#include "services/gnss_link/input/wait_readable.hpp"
+#include "common/bus/gnss_messages.hpp"
+#include "common/bus/message_conversions.hpp"
+#include "services/input/wait_readable.hpp"
 #include "services/imu_acq/imu_acq_options.hpp"
 #include "services/imu_acq/protocols/gx2_decoder.hpp"
 #include "services/imu_acq/protocols/tsu_decoder.hpp"
@@ -35,7 +36,7 @@ constexpr int32_t kFaultPpsDevice = 1 << 5;   // kernel PPS device unusable
 
 // IMU status bits (imu_sample_t.status).
 constexpr int32_t kStatusExtrapolated = 1 << 0;  // from the host clock: not on GPS time (common/bus)
-constexpr int32_t kStatusDeviceError = 1 << 1;
+constexpr int32_t kStatusDeviceError = ldv::kImuStatusDeviceError;
 constexpr int32_t kStatusHoldover = 1 << 2;       // from a previous or saved PPS fit, no live PPS behind it
 // IMU_PPS flags (pps_event_t.flags).
 constexpr int32_t kPpsMissingPrevious = 1 << 0, kPpsLate = 1 << 1, kPpsRejected = 1 << 2;

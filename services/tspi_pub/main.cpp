@@ -1,8 +1,8 @@
 // tspi_pub: the remote-facing product. Subscribes NAV on the vehicle bus and publishes TSPI
 // (tspi_v1_t) at a configured rate on a configured multicast group with a TTL for the vehicle network.
 #include <CLI/CLI.hpp>
-#include <yaml-cpp/yaml.h>
 
+#include "common/config/config_section.hpp"
 #include "common/logging.hpp"
 #include "services/runtime/service_runtime.hpp"
 #include "services/tspi_pub/tspi_from_nav.hpp"
@@ -19,20 +19,19 @@ struct TspiOptions {
 };
 
 TspiOptions load_options(const std::string& path) {
+  using ldv::config::Range;
   TspiOptions o;
   if (path.empty()) return o;
-  const YAML::Node y = YAML::LoadFile(path);
-  if (y["bus_url"]) o.bus_url = y["bus_url"].as<std::string>();
-  if (const auto t = y["tspi"]) {
-    if (t["rate_hz"]) o.rate_hz = t["rate_hz"].as<double>();
-    if (t["group"]) o.group = t["group"].as<std::string>();
-    if (t["port"]) o.port = t["port"].as<int>();
-    if (t["ttl"]) o.ttl = t["ttl"].as<int>();
-    if (t["channel"]) o.channel = t["channel"].as<std::string>();
-    if (t["print"]) o.print = t["print"].as<bool>();
-  }
-  if (o.rate_hz <= 0 || o.rate_hz > 1000) throw std::runtime_error(path + ": tspi.rate_hz must be in (0, 1000] Hz");
-  if (o.ttl < 0 || o.ttl > 255) throw std::runtime_error(path + ": tspi.ttl must be in [0, 255]");
+  ldv::config::ConfigSection y = ldv::config::ConfigSection::load(path);
+  o.bus_url = y.text("bus_url", o.bus_url);
+  ldv::config::ConfigSection t = y.section("tspi");
+  o.rate_hz = t.number("rate_hz", o.rate_hz, Range::above(0.0).up_to(1000.0));
+  o.group = t.text("group", o.group);
+  o.port = static_cast<int>(t.integer("port", o.port, 1, 65535));
+  o.ttl = static_cast<int>(t.integer("ttl", o.ttl, 0, 255));
+  o.channel = t.text("channel", o.channel);
+  o.print = t.flag("print", o.print);
+  y.refuse_unknown();
   return o;
 }
 }  // namespace
@@ -59,7 +58,7 @@ int main(int argc, char** argv) {
     rt.bus().subscribe<ldv_lcm::nav_state_t>("NAV", [&](const ldv_lcm::nav_state_t& nav, const std::string&) {
       ++rt.counters().received;
       rt.counters().dropped += nav_seq.observe(nav.seq);
-      if (!std::isfinite(nav.lat_deg) || !std::isfinite(nav.lon_deg) || !std::isfinite(nav.height_m)) {
+      if (!ldv::TspiDecimator::is_usable(nav)) {
         ++rt.counters().malformed;
         return;
       }

@@ -14,8 +14,10 @@ class TspiDecimator {
   explicit TspiDecimator(double rate_hz) : rate_hz_(rate_hz) {}
 
   // Returns a TSPI message when this NAV sample is the first at or after the next grid epoch
-  // k / rate_hz (GPS seconds of week); otherwise nothing.
+  // k / rate_hz (GPS seconds of week); otherwise nothing. A NAV that is not usable gives nothing (the
+  // caller counts it): a TSPI with NaN is never sent, let alone one marked aided.
   std::optional<ldv_lcm::tspi_v1_t> on_nav(const ldv_lcm::nav_state_t& nav) {
+    if (!is_usable(nav)) return std::nullopt;
     // 0.1 ms tolerance: NAV epochs carry the IMU stamps, whose last digits jitter (far below an IMU interval).
     const long slot = static_cast<long>(std::floor((nav.gps_sow_s + 1e-4) * rate_hz_));
     if (has_last_slot_ && slot == last_slot_ && nav.gps_week == last_week_) return std::nullopt;
@@ -44,8 +46,21 @@ class TspiDecimator {
     return t;
   }
 
-  // 0 invalid, 1 free-inertial, 2 aided (decimetre level or worse), 3 aided at RTK level.
+  // True when every number a TSPI carries is finite (and the std non-negative, the time inside a week):
+  // a NaN anywhere means the estimator's output is not a navigation solution, whatever its mode says.
+  static bool is_usable(const ldv_lcm::nav_state_t& nav) {
+    const auto finite = [](const auto* v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); };
+    const auto std_ok = [&](const float* v) { return finite(v) && v[0] >= 0 && v[1] >= 0 && v[2] >= 0; };
+    return std::isfinite(nav.gps_sow_s) && nav.gps_sow_s >= 0 && nav.gps_sow_s < 604800.0 &&
+           std::isfinite(nav.lat_deg) && std::abs(nav.lat_deg) <= 90.0 && std::isfinite(nav.lon_deg) &&
+           std::isfinite(nav.height_m) && finite(nav.vel_ned_mps) && finite(nav.rpy_deg) &&
+           std_ok(nav.pos_std_ned_m) && std_ok(nav.vel_std_ned_mps) && std_ok(nav.att_std_deg);
+  }
+
+  // 0 invalid (also whenever the NAV is not usable), 1 free-inertial, 2 aided (decimetre level or worse),
+  // 3 aided at RTK level.
   static int8_t quality_of(const ldv_lcm::nav_state_t& nav) {
+    if (!is_usable(nav)) return 0;
     if (nav.mode == 3) return 1;
     if (nav.mode != 2) return 0;
     const double horizontal_std_m = std::hypot(nav.pos_std_ned_m[0], nav.pos_std_ned_m[1]);

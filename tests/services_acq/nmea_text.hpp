@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <string>
 
-#include "services/gnss_link/protocols/nmea_framer.hpp"
+#include "common/formats/nmea_framer.hpp"
 
 namespace ldv::test {
 

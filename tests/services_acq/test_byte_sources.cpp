@@ -14,10 +14,10 @@
 #include <string>
 #include <thread>
 
-#include "services/gnss_link/input/file_source.hpp"
-#include "services/gnss_link/input/serial_port.hpp"
-#include "services/gnss_link/input/tcp_client.hpp"
-#include "services/gnss_link/input/wait_readable.hpp"
+#include "services/input/file_source.hpp"
+#include "services/input/serial_port.hpp"
+#include "services/input/tcp_client.hpp"
+#include "services/input/wait_readable.hpp"
 #include "services/runtime/service_runtime.hpp"
 
 using namespace ldv;

@@ -1,7 +1,7 @@
 // Decoded solutions and labels -> gnss_solution_t / pps_event_t, and the label back as imu_acq reads it.
 #include <gtest/gtest.h>
 
-#include "services/gnss_link/gnss_messages.hpp"
+#include "common/bus/gnss_messages.hpp"
 
 using namespace ldv;
 using namespace ldv::gnss;

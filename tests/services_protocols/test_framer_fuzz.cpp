@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "services/gnss_link/protocols/nmea_epoch_assembler.hpp"
-#include "services/gnss_link/protocols/nmea_framer.hpp"
-#include "services/gnss_link/protocols/rtklib_solution_stream.hpp"
-#include "services/gnss_link/protocols/ubx_framer.hpp"
-#include "services/gnss_link/protocols/ubx_messages.hpp"
+#include "common/formats/nmea_epoch_assembler.hpp"
+#include "common/formats/nmea_framer.hpp"
+#include "common/formats/rtklib_solution_stream.hpp"
+#include "common/formats/ubx_framer.hpp"
+#include "common/formats/ubx_messages.hpp"
 
 using namespace ldv::gnss;
 

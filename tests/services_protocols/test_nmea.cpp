@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "services/gnss_link/protocols/nmea_epoch_assembler.hpp"
-#include "services/gnss_link/protocols/nmea_framer.hpp"
-#include "services/gnss_link/protocols/nmea_sentences.hpp"
+#include "common/formats/nmea_epoch_assembler.hpp"
+#include "common/formats/nmea_framer.hpp"
+#include "common/formats/nmea_sentences.hpp"
 
 using namespace ldv;
 using namespace ldv::gnss;

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "common/geo/earth_model.hpp"
-#include "services/gnss_link/protocols/rtklib_solution.hpp"
+#include "common/formats/rtklib_solution.hpp"
 
 using namespace ldv;
 using namespace ldv::gnss;

@@ -8,8 +8,8 @@
 
 #include "common/geo/earth_model.hpp"
 #include "common/io/input_error.hpp"
-#include "services/gnss_link/protocols/rtklib_solution.hpp"
-#include "services/gnss_link/protocols/rtklib_solution_stream.hpp"
+#include "common/formats/rtklib_solution.hpp"
+#include "common/formats/rtklib_solution_stream.hpp"
 
 using namespace ldv;
 using namespace ldv::gnss;
@@ -140,15 +140,40 @@ TEST(RtklibSolutionStream, GivenChunkedTcpBytesWithBadLines_ThenGoodLinesSurvive
   EXPECT_EQ(stream.counters().overlong_lines, 1u);
 }
 
-TEST(RtklibSolution, GivenAMalformedFile_ThenReadingThrowsWithFileAndLine) {
+TEST(RtklibSolution, GivenAMalformedLine_ThenReadingSkipsAndCountsItByReason) {
   const std::string path = ::testing::TempDir() + "bad.pos";
   FILE* f = std::fopen(path.c_str(), "w");
-  std::fputs("% header\n2024/06/24 08:20:00.000 35.1 136.9 104.8 1 42 0 0 0 0 0 0 0 0\n2024/06/24 garbage\n", f);
+  std::fputs("% header\n2024/06/24 08:20:00.000 35.1 136.9 104.8 1 42 0.01 0.01 0.02 0 0 0 0 0\n2024/06/24 garbage\n", f);
+  std::fclose(f);
+  RtklibReadReport report;
+  const auto sols = read_rtklib_pos(path, {}, &report);
+  EXPECT_EQ(sols.size(), 1u);
+  EXPECT_EQ(report.malformed(), 1);
+  EXPECT_EQ(report.malformed_by_reason.count("expected 'yyyy/mm/dd hh:mm:ss' or 'week tow'"), 1u);
+}
+
+TEST(RtklibSolution, GivenOnlyMalformedLines_ThenReadingThrowsWithFileAndLine) {
+  const std::string path = ::testing::TempDir() + "all_bad.pos";
+  FILE* f = std::fopen(path.c_str(), "w");
+  std::fputs("% header\n2024/06/24 garbage\n2024/06/24 08:20:00.000 35.1 136.9 104.8 1 42 0 0 0 0 0 0 0 0\n", f);
   std::fclose(f);
   try {
     read_rtklib_pos(path);
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
-    EXPECT_EQ(e.line(), 3);
+    EXPECT_EQ(e.line(), 2);
+    EXPECT_NE(std::string(e.what()).find("1 malformed (position sigma not positive)"), std::string::npos) << e.what();
+  }
+}
+
+TEST(RtklibSolution, GivenNonPositiveOrNonFiniteSigmas_ThenTheLineIsMalformed) {
+  RtklibSolutionParser parser;
+  GnssSolution s;
+  std::string why;
+  const std::string head = "2024/06/24 08:20:00.000 35.1 136.9 104.8 1 42 ";
+  EXPECT_EQ(parser.parse_line(head + "0.01 0.01 0.02 0 0 0 0 0", s, &why), RtklibSolutionParser::LineKind::kSolution);
+  for (const char* sigmas : {"0 0.01 0.02", "0.01 -0.01 0.02", "0.01 0.01 0", "0.01 nan 0.02", "0.01 0.01 inf"}) {
+    EXPECT_EQ(parser.parse_line(head + sigmas + " 0 0 0 0 0", s, &why), RtklibSolutionParser::LineKind::kMalformed)
+        << sigmas;
   }
 }

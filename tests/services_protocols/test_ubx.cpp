@@ -12,11 +12,11 @@
 #include <vector>
 
 #include "common/geo/earth_model.hpp"
-#include "services/gnss_link/protocols/nmea_epoch_assembler.hpp"
-#include "services/gnss_link/protocols/nmea_framer.hpp"
-#include "services/gnss_link/protocols/rtklib_solution.hpp"
-#include "services/gnss_link/protocols/ubx_framer.hpp"
-#include "services/gnss_link/protocols/ubx_messages.hpp"
+#include "common/formats/nmea_epoch_assembler.hpp"
+#include "common/formats/nmea_framer.hpp"
+#include "common/formats/rtklib_solution.hpp"
+#include "common/formats/ubx_framer.hpp"
+#include "common/formats/ubx_messages.hpp"
 
 using namespace ldv;
 using namespace ldv::gnss;

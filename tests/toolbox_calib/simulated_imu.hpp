@@ -5,7 +5,7 @@
 #include <random>
 
 #include "common/geo/earth_model.hpp"
-#include "toolbox/calib/imu_calibration.hpp"
+#include "common/formats/imu_calibration.hpp"
 #include "toolbox/calib/imu_log.hpp"
 
 namespace ldv::calib::testing {

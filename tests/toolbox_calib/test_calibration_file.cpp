@@ -9,7 +9,7 @@
 
 #include "common/io/input_error.hpp"
 #include "simulated_imu.hpp"
-#include "toolbox/calib/imu_calibration.hpp"
+#include "common/formats/imu_calibration.hpp"
 
 namespace ldv::calib {
 namespace {

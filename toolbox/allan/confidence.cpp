@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "toolbox/allan/chi_square.hpp"
+#include "common/math/chi_square.hpp"
 #include "toolbox/allan/edf.hpp"
 #include "toolbox/allan/noise_id.hpp"
 
@@ -11,8 +11,8 @@ namespace ldv::allan {
 Interval chi_square_interval(double dev, double edf, double confidence) {
   if (!(edf > 0.0)) return {dev, dev};
   const double tail = 0.5 * (1.0 - confidence);
-  const double chi_lo = chi_square_quantile(tail, edf);
-  const double chi_hi = chi_square_quantile(1.0 - tail, edf);
+  const double chi_lo = math::chi_square_quantile(tail, edf);
+  const double chi_hi = math::chi_square_quantile(1.0 - tail, edf);
   return {dev * std::sqrt(edf / chi_hi), dev * std::sqrt(edf / chi_lo)};
 }
 

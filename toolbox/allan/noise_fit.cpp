@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "toolbox/allan/avar_covariance.hpp"
-#include "toolbox/allan/chi_square.hpp"
+#include "common/math/chi_square.hpp"
 #include "toolbox/allan/nonnegative_lsq.hpp"
 
 namespace ldv::allan {
@@ -365,7 +365,7 @@ NoiseFit fit_unit_scale(const std::vector<StabilityPoint>& pts, const FitOptions
     out.covariance_inflation = std::max(1.0, d.tau.size() / octaves);
   }
 
-  const double z = normal_quantile(0.5 + 0.5 * opt.interval_confidence);
+  const double z = math::normal_quantile(0.5 + 0.5 * opt.interval_confidence);
   std::vector<int> active;
   for (size_t k = 0; k < terms.size(); ++k) if (model.fit.c[k] > 0) active.push_back(static_cast<int>(k));
   const Eigen::MatrixXd cov_active = covariance(model.basis, active, d, model.fit.wh, model.fit.c) * out.covariance_inflation;

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "toolbox/allan/block_spectrum.hpp"
-#include "toolbox/allan/chi_square.hpp"
+#include "common/math/chi_square.hpp"
 #include "toolbox/allan/nonnegative_lsq.hpp"
 
 namespace ldv::allan {
@@ -417,7 +417,7 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
     }
     return false;
   };
-  const double z = normal_quantile(0.5 + 0.5 * opt.interval_confidence);
+  const double z = math::normal_quantile(0.5 + 0.5 * opt.interval_confidence);
   std::vector<int> active, all;
   for (int j = 0; j < sol.c.size(); ++j) {
     all.push_back(j);

@@ -11,8 +11,8 @@
 #include "common/formats/tagged_imu_csv.hpp"
 #include "common/io/input_error.hpp"
 #include "estimator/run/run_navigation.hpp"
-#include "services/gnss_link/protocols/rtklib_solution.hpp"
-#include "toolbox/calib/imu_calibration.hpp"
+#include "common/formats/rtklib_solution.hpp"
+#include "common/formats/imu_calibration.hpp"
 
 namespace ldv::assess {
 namespace {
@@ -36,6 +36,40 @@ bool ends_with(const std::string& s, const char* suffix) {
 }
 
 // The calibration file: the command line's, else the configuration's ldv.calibration (resolved like imupath).
+// Seconds since the start of GPS week `ref_week`: continuous across a week rollover (sow restarts at 0,
+// this goes on past 604800), so time order is the order of this number.
+double continuous_seconds(const GpsTime& t, int ref_week) { return (t.week - ref_week) * kSecondsPerWeek + t.sow_s; }
+
+// A .pos file's solutions in time order. Each record stands on its own time tag: one record stamped
+// ahead (a glitch, or a real forward jump) is placed at its time instead of making every later one look
+// repeated. Records at the same epoch as the one before are dropped (kept: the first in the file).
+struct PosTimeOrder {
+  std::vector<const gnss::GnssSolution*> solutions;
+  long repeated = 0, out_of_order = 0;
+};
+PosTimeOrder in_time_order(const std::vector<gnss::GnssSolution>& sols, int& ref_week) {
+  ref_week = sols.front().time.week;
+  for (const auto& s : sols) ref_week = std::min(ref_week, s.time.week);
+  PosTimeOrder o;
+  for (std::size_t i = 0; i < sols.size(); ++i) {
+    if (i > 0 && sols[i].time.total_seconds() < sols[i - 1].time.total_seconds()) ++o.out_of_order;
+    o.solutions.push_back(&sols[i]);
+  }
+  const auto t = [](const gnss::GnssSolution* s) { return s->time.total_seconds(); };
+  std::stable_sort(o.solutions.begin(), o.solutions.end(), [&](auto* x, auto* y) { return t(x) < t(y); });
+  constexpr double kSameEpoch_s = 1e-6;  // .pos prints milliseconds
+  std::vector<const gnss::GnssSolution*> kept;
+  for (const auto* s : o.solutions) {
+    if (!kept.empty() && t(s) - t(kept.back()) < kSameEpoch_s) {
+      ++o.repeated;
+      continue;
+    }
+    kept.push_back(s);
+  }
+  o.solutions = std::move(kept);
+  return o;
+}
+
 std::string calibration_path(const NavInputArgs& a, const KfGinsConfig& cfg) {
   if (!a.calibration.empty()) return a.calibration;
   if (!cfg.ldv.IsDefined() || cfg.ldv.IsNull() || !cfg.ldv["calibration"]) return "";
@@ -144,7 +178,7 @@ void decide_gnss_velocity_use(const NavInputArgs& a, NavInputs& in) {
                   c.normalised_mse, c.compared, 1e3 * c.best_lag_s, c.normalised_mse_at_lag,
                   c.lagged() ? ", a significant lag" : "");
   }
-  in.gnss_note = note;
+  in.gnss_velocity_note = note;
 }
 
 }  // namespace
@@ -202,16 +236,19 @@ NavInputs load_nav_inputs(const NavInputArgs& a) {
   const std::string& gnss_path = in.config.gnss_path;
   if (gnss_path.empty()) throw InputError("ldv", 0, "give --kfgins-config FILE, or --gnss FILE (or --pos FILE)");
   if (!a.rtklib_pos.empty() || ends_with(gnss_path, ".pos")) {
-    const auto sols = gnss::read_rtklib_pos(gnss_path);
-    for (const gnss::GnssSolution& s : sols) {
-      GnssFix f = s.fix;
+    gnss::RtklibReadReport rep;
+    const auto sols = gnss::read_rtklib_pos(gnss_path, {}, &rep);
+    if (sols.empty()) throw InputError(gnss_path, 0, "no solutions in the RTKLIB .pos file");
+    const PosTimeOrder order = in_time_order(sols, in.gps_week);
+    for (const gnss::GnssSolution* s : order.solutions) {
+      GnssFix f = s->fix;
+      f.t_s = continuous_seconds(s->time, in.gps_week);
       f.pos.h_m += height_offset_m;
       if (f.quality != GnssQuality::kFixed && float_std_min_m > 0) f.pos_std_ned_m = f.pos_std_ned_m.cwiseMax(float_std_min_m);
-      if (!in.gnss.empty() && f.t_s <= in.gnss.back().t_s) continue;  // repeated epochs
       in.gnss.push_back(f);
     }
-    if (in.gnss.empty()) throw InputError(gnss_path, 0, "no solutions in the RTKLIB .pos file");
-    in.gps_week = sols.front().time.week;
+    in.gnss_note = rep.summary() + "; " + std::to_string(order.repeated) + " repeated epochs dropped, " +
+                   std::to_string(order.out_of_order) + " out of file order";
   } else {
     in.gnss = read_kfgins_gnss(gnss_path);
   }

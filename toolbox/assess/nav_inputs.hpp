@@ -56,11 +56,14 @@ struct NavInputs {
   std::vector<GnssFix> gnss;
   std::string description;  // one line for the log
   std::string imu_note;     // what the IMU reader skipped or assumed
-  int gps_week = -1;        // from a .pos file, else -1
+  std::string gnss_note;    // what the .pos reader skipped or reordered
+  // From a .pos file (its earliest week), else -1. .pos fix times are seconds since the start of this week,
+  // continuous across a week rollover (past 604800 s).
+  int gps_week = -1;
   est::ImuLatencyEstimate imu_latency;  // when estimated (NavInputArgs::imu_latency); applied if significant()
   bool imu_latency_applied = false;
   // What was decided about the GNSS velocities (estimator/calibrate/gnss_velocity_check.hpp), "" if none.
-  std::string gnss_note;
+  std::string gnss_velocity_note;
 };
 
 // The configuration and the filter options with the command line's model changes, no data read (the

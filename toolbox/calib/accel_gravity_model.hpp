@@ -4,7 +4,7 @@
 // magnitude cannot see a rotation of the triad, which is why the symmetric (non-orthogonality) form is
 // the complete observable model: 9 unknowns, x = [bias(3) m/s^2, scale(3), misalignment(3) rad].
 #include "toolbox/calib/gauss_helmert.hpp"
-#include "toolbox/calib/imu_calibration.hpp"
+#include "common/formats/imu_calibration.hpp"
 #include "toolbox/calib/static_poses.hpp"
 
 namespace ldv::calib {

@@ -8,7 +8,7 @@
 // frame_rotation(3) rad]. For a MEMS gyro the Earth-rate signal is buried in noise and bias: the
 // observability check reports it unresolved and the solve is refused.
 #include "toolbox/calib/gauss_helmert.hpp"
-#include "toolbox/calib/imu_calibration.hpp"
+#include "common/formats/imu_calibration.hpp"
 #include "toolbox/calib/static_poses.hpp"
 
 namespace ldv::calib {

@@ -8,7 +8,7 @@
 // follows a MEMS bias that drifts during the log). 9 unknowns x = [scale(3), misalignment(3) rad,
 // frame_rotation(3) rad].
 #include "toolbox/calib/gauss_helmert.hpp"
-#include "toolbox/calib/imu_calibration.hpp"
+#include "common/formats/imu_calibration.hpp"
 #include "toolbox/calib/imu_log.hpp"
 #include "toolbox/calib/static_poses.hpp"
 

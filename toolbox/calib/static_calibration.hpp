@@ -9,7 +9,7 @@
 
 #include "toolbox/calib/damping_sweep.hpp"
 #include "toolbox/calib/gauss_helmert.hpp"
-#include "toolbox/calib/imu_calibration.hpp"
+#include "common/formats/imu_calibration.hpp"
 #include "toolbox/calib/imu_log.hpp"
 #include "toolbox/calib/static_poses.hpp"
 

@@ -5,7 +5,7 @@
 
 #include <Eigen/Cholesky>
 
-#include "toolbox/allan/chi_square.hpp"
+#include "common/math/chi_square.hpp"
 #include "toolbox/diagnose/statistics.hpp"
 
 namespace ldv::diag {
@@ -17,8 +17,8 @@ Band mean_band(double value, double expected, double dof, double n_eff, double c
   b.value = value;
   const double k = std::max(1.0, dof * n_eff);
   const double a = 0.5 * (1.0 - confidence);
-  b.lo = expected * allan::chi_square_quantile(a, k) / k;
-  b.hi = expected * allan::chi_square_quantile(1.0 - a, k) / k;
+  b.lo = expected * math::chi_square_quantile(a, k) / k;
+  b.hi = expected * math::chi_square_quantile(1.0 - a, k) / k;
   return b;
 }
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "toolbox/allan/chi_square.hpp"
+#include "common/math/chi_square.hpp"
 
 namespace ldv::diag {
 namespace {
@@ -55,7 +55,7 @@ double noncentral_sf(double x, double dof, double lambda) {
 
 double chi_square_sf(double x, double dof) {
   if (x <= 0.0) return 1.0;
-  return std::max(0.0, 1.0 - allan::chi_square_cdf(x, dof));
+  return std::max(0.0, 1.0 - math::chi_square_cdf(x, dof));
 }
 
 double incomplete_beta(double x, double a, double b) {
@@ -79,7 +79,7 @@ double hotelling_sf(double t2, double p, double nu) {
 }
 
 double noncentrality_for_power(double alpha, double power, double dof) {
-  const double c = allan::chi_square_quantile(1.0 - alpha, dof);
+  const double c = math::chi_square_quantile(1.0 - alpha, dof);
   double lo = 0.0, hi = 1.0;
   while (noncentral_sf(c, dof, hi) < power) hi *= 2.0;
   for (int i = 0; i < 60; ++i) {

@@ -263,9 +263,10 @@ void run_nav(const NavArgs& a) {
   if (week < 0) week = in.gps_week >= 0 ? in.gps_week : 0;
   const std::string nav_path = default_nav_path(a, in.config);
   if (!a.quiet) {
-    std::fprintf(stderr, "ldv nav: %zu IMU samples (%s), %zu GNSS fixes\n", in.imu.size(), in.imu_note.c_str(),
-                 in.gnss.size());
-    if (!in.gnss_note.empty()) std::fprintf(stderr, "ldv nav: %s\n", in.gnss_note.c_str());
+    const std::string gnss_note = in.gnss_note.empty() ? "" : " (" + in.gnss_note + ")";
+    std::fprintf(stderr, "ldv nav: %zu IMU samples (%s), %zu GNSS fixes%s\n", in.imu.size(), in.imu_note.c_str(),
+                 in.gnss.size(), gnss_note.c_str());
+    if (!in.gnss_velocity_note.empty()) std::fprintf(stderr, "ldv nav: %s\n", in.gnss_velocity_note.c_str());
     std::fprintf(stderr, "state layout (%d states):\n%s", filter->layout().size(), filter->layout().describe().c_str());
   }
 

@@ -12,7 +12,7 @@
 #include <functional>
 #include <optional>
 
-#include "services/gnss_link/protocols/gnss_solution.hpp"
+#include "common/formats/gnss_solution.hpp"
 
 namespace ldv::timing {
 

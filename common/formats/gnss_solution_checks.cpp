@@ -1,0 +1,58 @@
+#include "common/formats/gnss_solution_checks.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace ldv::gnss {
+namespace {
+std::string num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6g", v);
+  return b;
+}
+}  // namespace
+
+std::optional<std::string> implausibility(const GpsTime& t) {
+  if (t.week < kMinPlausibleGpsWeek || t.week > kMaxPlausibleGpsWeek)
+    return "GPS week " + std::to_string(t.week) + " not in [" + std::to_string(kMinPlausibleGpsWeek) + ", " +
+           std::to_string(kMaxPlausibleGpsWeek) + "]";
+  if (!std::isfinite(t.sow_s) || t.sow_s < 0.0 || t.sow_s >= kSecondsPerWeek)
+    return "time of week " + num(t.sow_s) + " s not in [0, 604800)";
+  return std::nullopt;
+}
+
+std::optional<std::string> implausibility(const GnssSolution& s) {
+  if (auto why = implausibility(s.time)) return why;
+  const GnssFix& f = s.fix;
+  constexpr double kPi = std::numbers::pi;
+  if (!std::isfinite(f.pos.lat_rad) || std::abs(f.pos.lat_rad) > kPi / 2)
+    return "latitude " + num(f.pos.lat_rad * 180.0 / kPi) + " deg not in [-90, 90]";
+  if (!std::isfinite(f.pos.lon_rad) || std::abs(f.pos.lon_rad) > 2 * kPi)
+    return "longitude " + num(f.pos.lon_rad * 180.0 / kPi) + " deg not in [-360, 360]";
+  if (!std::isfinite(f.pos.h_m) || f.pos.h_m < kMinPlausibleHeight_m || f.pos.h_m > kMaxPlausibleHeight_m)
+    return "height " + num(f.pos.h_m) + " m not in [" + num(kMinPlausibleHeight_m) + ", " + num(kMaxPlausibleHeight_m) +
+           "]";
+  if (!s.pos_cov_ned_m2.allFinite() || !(s.pos_cov_ned_m2.diagonal().array() > 0.0).all())
+    return "position variances (" + num(s.pos_cov_ned_m2(0, 0)) + ", " + num(s.pos_cov_ned_m2(1, 1)) + ", " +
+           num(s.pos_cov_ned_m2(2, 2)) + ") m^2 not positive and finite";
+  if (!f.pos_std_ned_m.allFinite() || !(f.pos_std_ned_m.array() > 0.0).all())
+    return "position std not positive and finite";
+  if (f.has_velocity) {
+    if (!f.vel_n_mps.allFinite() || f.vel_n_mps.norm() > kMaxPlausibleSpeed_mps)
+      return "velocity " + num(f.vel_n_mps.norm()) + " m/s not finite below " + num(kMaxPlausibleSpeed_mps);
+    if (!f.vel_std_n_mps.allFinite() || (f.vel_std_n_mps.array() < 0.0).any())
+      return "velocity std not finite and >= 0";
+  }
+  if (!std::isfinite(f.age_s) || !std::isfinite(f.ratio) || f.num_sats < 0)
+    return "age, ratio or satellite count not finite and >= 0";
+  return std::nullopt;
+}
+
+std::optional<std::string> implausibility(const PpsTimeLabel& label) {
+  if (auto why = implausibility(label.pulse_time)) return why;
+  if (label.quantization_error_valid && !std::isfinite(label.quantization_error_s))
+    return "quantisation error not finite";
+  return std::nullopt;
+}
+
+}  // namespace ldv::gnss

@@ -1,0 +1,59 @@
+#pragma once
+// What fusion accepts from the bus, decided before anything reaches the estimator, so no single message
+// can stop or corrupt navigation:
+//  - IMU: finite numbers (is_valid), on GPS time (unless the IMU has only host-clock stamps), not flagged
+//    as a device error by imu_acq (saturation, a failed self-test: the increments are not measurements;
+//    the filter then bridges the gap from the next good sample, as for a lost one), and stamped forward
+//    within imu_max_ahead_s of the last accepted sample (MessageTimeGate: a real jump is followed after
+//    three samples that confirm it).
+//  - GNSS: finite and plausible (is_valid), and not stamped more than gnss_max_ahead_s after the last
+//    accepted IMU sample (a fix arrives after its epoch, never long before the IMU reaches it).
+// Every refusal is counted by reason.
+#include <cstdint>
+#include <ldv_lcm/gnss_solution_t.hpp>
+#include <ldv_lcm/imu_sample_t.hpp>
+
+#include "services/runtime/message_time_gate.hpp"
+
+namespace ldv {
+
+struct FusionInputOptions {
+  bool host_clock_imu = false;    // accept IMU samples stamped from the host clock (no PPS)
+  double imu_max_ahead_s = 1.0;   // largest step between accepted IMU stamps before confirmation is needed
+  double gnss_max_ahead_s = 2.0;  // how far a fix may be stamped ahead of the last accepted IMU sample
+};
+
+enum class InputVerdict {
+  kAccepted,
+  kNotFinite,     // is_valid failed: NaN, infinity, a non-positive variance or interval
+  kNotGpsTime,    // IMU stamped from the host clock (skipped, not malformed: imu_acq not locked yet)
+  kDeviceError,   // IMU status bit 1
+  kTooFarAhead,   // stamped ahead of the stream's time (a bad stamp)
+  kNotAfterLast,  // IMU stamped at or before the last accepted sample
+};
+
+struct FusionInputCounters {
+  int64_t not_finite = 0, not_gps_time = 0, device_error = 0, too_far_ahead = 0, not_after_last = 0;
+  // Refused as bad input (the heartbeat's malformed count); host-clock samples are expected, not bad.
+  int64_t malformed() const { return not_finite + device_error + too_far_ahead + not_after_last; }
+};
+
+class FusionInputGate {
+ public:
+  explicit FusionInputGate(FusionInputOptions o) : o_(o), imu_time_(o.imu_max_ahead_s) {}
+
+  InputVerdict check(const ldv_lcm::imu_sample_t& m);
+  InputVerdict check(const ldv_lcm::gnss_solution_t& m);
+  const FusionInputCounters& counters() const { return c_; }
+
+ private:
+  InputVerdict count(InputVerdict v);
+
+  FusionInputOptions o_;
+  MessageTimeGate imu_time_;
+  FusionInputCounters c_;
+};
+
+const char* describe(InputVerdict v);
+
+}  // namespace ldv

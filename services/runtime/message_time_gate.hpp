@@ -1,0 +1,55 @@
+#pragma once
+// Guards a stream of time-stamped messages against one bad stamp. A message stamped more than
+// max_ahead_s after the last accepted one is refused: accepted, it would carry the stream's clock far
+// ahead and every good message after it would look old (fusion's NAV time froze until a restart). A real
+// jump (the publisher resumed after a gap) is followed by messages that continue from the new time: after
+// `confirmations` such messages in a row, each within max_ahead_s of the one before, the gate moves on.
+// Messages not after the last accepted one are refused (a stream only goes forward).
+namespace ldv {
+
+class MessageTimeGate {
+ public:
+  enum class Verdict { kAccepted, kTooFarAhead, kNotAfterLast };
+
+  explicit MessageTimeGate(double max_ahead_s, int confirmations = 3)
+      : max_ahead_s_(max_ahead_s), confirmations_(confirmations) {}
+
+  // t_s: continuous time of the message (e.g. GPS week * 604800 + seconds of week).
+  Verdict check(double t_s) {
+    if (!has_last_) return accept(t_s);
+    if (!(t_s > last_s_)) return Verdict::kNotAfterLast;
+    if (t_s - last_s_ <= max_ahead_s_) return accept(t_s);
+    // Ahead: does it continue a run of messages ahead (a real jump) or start one?
+    if (run_length_ > 0 && t_s > run_last_s_ && t_s - run_last_s_ <= max_ahead_s_)
+      ++run_length_;
+    else
+      run_length_ = 1;
+    run_last_s_ = t_s;
+    if (run_length_ >= confirmations_) {
+      ++jumps_followed_;
+      return accept(t_s);
+    }
+    return Verdict::kTooFarAhead;
+  }
+
+  bool has_accepted() const { return has_last_; }
+  double last_accepted_s() const { return last_s_; }
+  long jumps_followed() const { return jumps_followed_; }  // confirmed forward jumps
+
+ private:
+  Verdict accept(double t_s) {
+    has_last_ = true;
+    last_s_ = t_s;
+    run_length_ = 0;
+    return Verdict::kAccepted;
+  }
+
+  double max_ahead_s_;
+  int confirmations_;
+  bool has_last_ = false;
+  double last_s_ = 0.0, run_last_s_ = 0.0;
+  int run_length_ = 0;
+  long jumps_followed_ = 0;
+};
+
+}  // namespace ldv

@@ -1,0 +1,90 @@
+// RTKLIB .pos input of ldv nav / outage / diagnose (toolbox/assess/nav_inputs.cpp): records in GPS time
+// order across a week rollover and after a record stamped ahead; non-positive sigmas refused as malformed.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "common/io/input_error.hpp"
+#include "toolbox/assess/nav_inputs.hpp"
+
+namespace ldv::assess {
+namespace {
+
+std::string temp_path(const std::string& name) {
+  const auto dir = std::filesystem::path(::testing::TempDir()) / ("navpos_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  return (dir / name).string();
+}
+
+// Two KF-GINS IMU samples: the reader needs an IMU file, its content does not matter here.
+std::string imu_file() {
+  const std::string path = temp_path("imu.txt");
+  std::ofstream(path) << "100.000 0 0 0 0 0 0\n100.010 0 0 0 0 0 0\n";
+  return path;
+}
+
+// One .pos line, week/tow layout, RTK fixed, sigmas (sdn, sde, sdu).
+std::string pos_line(int week, double tow_s, double sd_m = 0.01) {
+  char b[200];
+  std::snprintf(b, sizeof b, "%d %.3f 35.100000000 136.900000000 104.8000 1 10 %.4f %.4f %.4f 0 0 0 0.0 9.9\n", week,
+                tow_s, sd_m, sd_m, 2 * sd_m);
+  return b;
+}
+
+NavInputs load(const std::string& pos_text) {
+  const std::string pos = temp_path("gnss.pos");
+  std::ofstream(pos) << "%  GPST   latitude(deg) longitude(deg)  height(m)   Q  ns   sdn(m)\n" << pos_text;
+  NavInputArgs a;
+  a.imu = imu_file();
+  a.rtklib_pos = pos;
+  return load_nav_inputs(a);
+}
+
+}  // namespace
+
+TEST(NavInputsPos, GivenAWeekRollover_ThenEveryFixIsKeptOnContinuousTime) {
+  const NavInputs in =
+      load(pos_line(2300, 604798.0) + pos_line(2300, 604799.0) + pos_line(2301, 0.0) + pos_line(2301, 1.0));
+  ASSERT_EQ(in.gnss.size(), 4u);
+  EXPECT_EQ(in.gps_week, 2300);
+  EXPECT_DOUBLE_EQ(in.gnss[2].t_s, 604800.0);  // week 2301 sow 0 = 604800 s after the start of week 2300
+  EXPECT_DOUBLE_EQ(in.gnss[3].t_s, 604801.0);
+}
+
+TEST(NavInputsPos, GivenOneRecordStampedAhead_ThenTheLaterFixesAreNotDroppedAsRepeated) {
+  std::string text;
+  for (int k = 0; k < 5; ++k) text += pos_line(2300, 100.0 + k);
+  text += pos_line(2300, 5000.0);  // one forward jump: the record after it is the one out of file order
+  for (int k = 5; k < 10; ++k) text += pos_line(2300, 100.0 + k);
+  text += pos_line(2300, 109.0);  // a true repeat of the epoch before
+  const NavInputs in = load(text);
+  ASSERT_EQ(in.gnss.size(), 11u);  // 10 epochs 100..109 and the one at 5000, each once
+  for (int k = 0; k < 10; ++k) EXPECT_DOUBLE_EQ(in.gnss[k].t_s, 100.0 + k);
+  EXPECT_DOUBLE_EQ(in.gnss[10].t_s, 5000.0);
+  EXPECT_NE(in.gnss_note.find("1 repeated"), std::string::npos) << in.gnss_note;
+  EXPECT_NE(in.gnss_note.find("1 out of file order"), std::string::npos) << in.gnss_note;
+}
+
+TEST(NavInputsPos, GivenNonPositiveSigmas_ThenThoseRecordsAreMalformedAndCountedByReason) {
+  const NavInputs in =
+      load(pos_line(2300, 100.0) + pos_line(2300, 101.0, 0.0) + pos_line(2300, 102.0, -0.01) + pos_line(2300, 103.0));
+  ASSERT_EQ(in.gnss.size(), 2u);
+  EXPECT_DOUBLE_EQ(in.gnss[1].t_s, 103.0);
+  EXPECT_NE(in.gnss_note.find("2 malformed (position sigma not positive)"), std::string::npos) << in.gnss_note;
+}
+
+TEST(NavInputsPos, GivenOnlyZeroSigmas_ThenLoadingFailsNamingTheLineInsteadOfRejectingEveryFixLater) {
+  std::string text;
+  for (int k = 0; k < 120; ++k) text += pos_line(2300, 100.0 + k, 0.0);
+  try {
+    load(text);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 2);  // the first record, after the header line
+    EXPECT_NE(std::string(e.what()).find("120 malformed (position sigma not positive)"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace ldv::assess

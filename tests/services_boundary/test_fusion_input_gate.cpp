@@ -1,0 +1,74 @@
+// fusion's input gate: one IMU message stamped far ahead must not freeze the stream; a real jump is followed;
+// samples flagged as device errors are not navigation data.
+#include <gtest/gtest.h>
+
+#include "common/bus/message_conversions.hpp"
+#include "services/fusion/fusion_input_gate.hpp"
+
+using namespace ldv;
+
+namespace {
+constexpr int kWeek = 2300;
+ldv_lcm::imu_sample_t imu_at(double sow_s, int32_t status = 0) {
+  ldv_lcm::imu_sample_t m{};
+  m.gps_week = kWeek;
+  m.gps_sow_s = sow_s;
+  m.dt_s = 0.01;
+  m.dvel_b_mps[2] = -0.0981;
+  m.status = status;
+  return m;
+}
+}  // namespace
+
+TEST(FusionInputGate, GivenOneImuMessageStamped1000sAhead_ThenItIsRefusedAndEveryLaterSampleAccepted) {
+  FusionInputGate gate({});
+  int accepted = 0;
+  for (int k = 0; k < 100; ++k) accepted += gate.check(imu_at(1000.0 + 0.01 * k)) == InputVerdict::kAccepted;
+  EXPECT_EQ(gate.check(imu_at(2000.0)), InputVerdict::kTooFarAhead);
+  for (int k = 100; k < 200; ++k) accepted += gate.check(imu_at(1000.0 + 0.01 * k)) == InputVerdict::kAccepted;
+  EXPECT_EQ(accepted, 200);
+  EXPECT_EQ(gate.counters().too_far_ahead, 1);
+  EXPECT_EQ(gate.counters().malformed(), 1);
+}
+
+TEST(FusionInputGate, GivenARealForwardJump_ThenTheGateFollowsAfterThreeConfirmingSamples) {
+  FusionInputGate gate({});
+  for (int k = 0; k < 10; ++k) ASSERT_EQ(gate.check(imu_at(1000.0 + 0.01 * k)), InputVerdict::kAccepted);
+  // The IMU resumes 30 s later (imu_acq restarted): the first two are held back, the third confirms.
+  EXPECT_EQ(gate.check(imu_at(1030.00)), InputVerdict::kTooFarAhead);
+  EXPECT_EQ(gate.check(imu_at(1030.01)), InputVerdict::kTooFarAhead);
+  EXPECT_EQ(gate.check(imu_at(1030.02)), InputVerdict::kAccepted);
+  EXPECT_EQ(gate.check(imu_at(1030.03)), InputVerdict::kAccepted);
+  // Stamps at or before the last accepted one are refused (a stream only goes forward).
+  EXPECT_EQ(gate.check(imu_at(1030.03)), InputVerdict::kNotAfterLast);
+  EXPECT_EQ(gate.check(imu_at(1000.5)), InputVerdict::kNotAfterLast);
+}
+
+TEST(FusionInputGate, GivenDeviceErrorSamples_ThenTheyAreRefusedAndCounted) {
+  FusionInputGate gate({});
+  EXPECT_EQ(gate.check(imu_at(10.00)), InputVerdict::kAccepted);
+  for (int k = 1; k <= 200; ++k)  // 2 s of saturated samples at 100 Hz
+    EXPECT_EQ(gate.check(imu_at(10.0 + 0.01 * k, kImuStatusDeviceError)), InputVerdict::kDeviceError);
+  EXPECT_EQ(gate.counters().device_error, 200);
+  EXPECT_EQ(gate.check(imu_at(12.01)), InputVerdict::kAccepted);  // the gap is bridged by the filter
+}
+
+TEST(FusionInputGate, GivenHostClockOrNaNSamples_ThenTheyAreRefusedForTheirReason) {
+  FusionInputGate gate({});
+  EXPECT_EQ(gate.check(imu_at(10.0, kImuStatusTimeExtrapolated)), InputVerdict::kNotGpsTime);
+  auto nan = imu_at(10.0);
+  nan.dtheta_b_rad[1] = std::nan("");
+  EXPECT_EQ(gate.check(nan), InputVerdict::kNotFinite);
+  EXPECT_EQ(gate.counters().malformed(), 1);  // host-clock samples are expected, not bad input
+}
+
+TEST(FusionInputGate, GivenAGnssFixFarAheadOfTheImuClock_ThenItIsRefused) {
+  FusionInputGate gate({});
+  ASSERT_EQ(gate.check(imu_at(100.0)), InputVerdict::kAccepted);
+  ldv_lcm::gnss_solution_t g = message_from_gnss(GnssFix{}, kWeek, 0);
+  g.gps_week = kWeek;
+  g.gps_sow_s = 99.8;
+  EXPECT_EQ(gate.check(g), InputVerdict::kAccepted);
+  g.gps_sow_s = 1100.0;
+  EXPECT_EQ(gate.check(g), InputVerdict::kTooFarAhead);
+}
