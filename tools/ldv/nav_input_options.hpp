@@ -33,6 +33,9 @@ inline void add_nav_input_options(CLI::App* c, assess::NavInputArgs& in, bool co
   c->add_option("--add", in.add, "add an effect block (repeatable)");
   c->add_option("--drop", in.drop, "drop an effect block (repeatable)");
   c->add_option("--lever", in.lever, "antenna lever arm x y z [m], body front-right-down")->expected(3);
+  c->add_flag("--strict", in.strict,
+              "refuse inputs that drop more than 2 % of a file's records or hold an IMU gap over 1 s (default: a "
+              "warning)");
 }
 
 }  // namespace ldv::cli
