@@ -62,6 +62,18 @@ std::vector<ImuIncrement> read_kfgins_imu(const std::string& path, ImuReadReport
                           std::to_string(n));
       continue;
     }
+    // No IMU sample holds this (100 rad, 1e4 m/s in one interval): a corrupted field, not a measurement.
+    constexpr double kMaxDtheta_rad = 100.0, kMaxDvel_mps = 1e4, kMaxTime_s = 1e10;  // and 300 years of time
+    if (std::abs(v[0]) > kMaxTime_s) {
+      rep.dropped.add(DropReason::kOutOfRange, path, line, "column 1: time beyond 1e10 s");
+      continue;
+    }
+    if (std::max({std::abs(v[1]), std::abs(v[2]), std::abs(v[3])}) > kMaxDtheta_rad ||
+        std::max({std::abs(v[4]), std::abs(v[5]), std::abs(v[6])}) > kMaxDvel_mps) {
+      rep.dropped.add(DropReason::kOutOfRange, path, line,
+                      "an increment beyond any IMU (|dtheta| <= 100 rad, |dvel| <= 1e4 m/s per sample)");
+      continue;
+    }
     ImuRow r{{}, line};
     r.s.t_s = v[0];
     r.s.dtheta_b_rad = Vec3(v[1], v[2], v[3]);

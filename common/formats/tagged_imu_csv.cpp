@@ -122,6 +122,14 @@ std::vector<ImuIncrement> read_tagged_imu_csv(const std::string& csv_path, const
       }
     }
     if (bad) continue;
+    // No IMU measures this (1e5 g, 1e4 rad/s): a corrupted field, which would also overflow the increments.
+    constexpr double kMaxAccel_mps2 = 1e6, kMaxRate_rad_s = 1e4;
+    const Vec3 f = Vec3(v[0], v[1], v[2]) * opt.accel_to_mps2, w = Vec3(v[3], v[4], v[5]) * opt.gyro_to_rad_s;
+    if (!(f.cwiseAbs().maxCoeff() <= kMaxAccel_mps2) || !(w.cwiseAbs().maxCoeff() <= kMaxRate_rad_s)) {
+      dropped.add(DropReason::kOutOfRange, csv_path, line_no,
+                  "specific force or rate beyond any IMU (|f| <= 1e6 m/s^2, |w| <= 1e4 rad/s)");
+      continue;
+    }
     bool too_large = false;
     if (!parse_counter(fields[6], counter, too_large)) {
       if (line_no == 1 && !too_large) throw InputError(csv_path, line_no, "column 7: expected the counter [ticks], found '" + std::string(fields[6].substr(0, 40)) + "'");
@@ -179,8 +187,7 @@ std::vector<ImuIncrement> read_tagged_imu_csv(const std::string& csv_path, const
       }
     }
     const double counter_s = raw.empty() ? 0.0 : static_cast<double>(unwrapped - raw.front().counter) * opt.counter_to_s;
-    raw.push_back({counter_s, unwrapped, lines.line_end_offset(), line_no, missing_crs, Vec3(v[0], v[1], v[2]) * opt.accel_to_mps2,
-                   Vec3(v[3], v[4], v[5]) * opt.gyro_to_rad_s});
+    raw.push_back({counter_s, unwrapped, lines.line_end_offset(), line_no, missing_crs, f, w});
     last_raw = counter;
   }
   rep.counter_bits = bits;
