@@ -25,8 +25,9 @@ OutputFile::~OutputFile() {
 }
 
 void OutputFile::write(const char* data, size_t n) {
+  if (n == 0) return;
   if (!file_) throw InputError(path_, 0, "write after close");
-  if (n > 0 && std::fwrite(data, 1, n, file_) != n) fail(path_, "write failed", errno);
+  if (std::fwrite(data, 1, n, file_) != n) fail(path_, "write failed", errno);
 }
 
 void OutputFile::close() {
