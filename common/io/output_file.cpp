@@ -40,6 +40,13 @@ void OutputFile::close() {
   if (!flushed) fail(path_, "write failed", flush_err);
 }
 
+void close_checked(std::FILE* f, const std::string& path) {
+  const bool flushed = std::fflush(f) == 0 && !std::ferror(f);
+  const int flush_err = errno;
+  if (std::fclose(f) != 0) fail(path, "close failed", errno);
+  if (!flushed) fail(path, "write failed", flush_err);
+}
+
 void close_checked(std::ofstream& out, const std::string& path) {
   out.flush();
   const bool ok = static_cast<bool>(out);

@@ -28,5 +28,7 @@ class OutputFile {
 // For writers built on std::ofstream: flushes and closes `out`, throws InputError naming `path` if any write,
 // the flush or the close failed.
 void close_checked(std::ofstream& out, const std::string& path);
+// The same for a C stream: flushes and closes `f` (always), throws InputError naming `path` on any error.
+void close_checked(std::FILE* f, const std::string& path);
 
 }  // namespace ldv
