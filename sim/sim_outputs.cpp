@@ -11,6 +11,7 @@
 #include "common/formats/kfgins_files.hpp"
 #include "common/formats/rtklib_pos_writer.hpp"
 #include "common/io/input_error.hpp"
+#include "common/io/output_file.hpp"
 #include "sim/device_streams.hpp"
 #include "sim/effects.hpp"
 #include "sim/random.hpp"
@@ -78,6 +79,7 @@ void write_truth_effects(const std::string& path, const SimResult& r) {
   std::ofstream out(path);
   if (!out) throw InputError(path, 0, "cannot open file for writing");
   out << "# ldv sim: the truth of every injected effect (the answer key for ldv diagnose)\n" << e.c_str() << "\n";
+  close_checked(out, path);
 }
 
 void write_truth_errors(const std::string& path, const SimResult& r) {
@@ -88,14 +90,14 @@ void write_truth_errors(const std::string& path, const SimResult& r) {
   for (const auto& b : r.imu_bias_history)
     std::fprintf(f, "%.6f %.9e %.9e %.9e %.9e %.9e %.9e\n", b.t_s, b.gyro_bias_rad_s.x(), b.gyro_bias_rad_s.y(),
                  b.gyro_bias_rad_s.z(), b.accel_bias_mps2.x(), b.accel_bias_mps2.y(), b.accel_bias_mps2.z());
-  std::fclose(f);
+  close_checked(f, path);
 }
 
 void write_bytes(const std::string& path, const void* data, size_t n) {
   std::FILE* f = std::fopen(path.c_str(), "wb");
   if (!f) throw InputError(path, 0, "cannot open file for writing");
   const size_t w = std::fwrite(data, 1, n, f);
-  std::fclose(f);
+  close_checked(f, path);
   if (w != n) throw InputError(path, 0, "write error");
 }
 
@@ -121,7 +123,7 @@ void write_device_files(const fs::path& dir, const SimResult& r) {
   for (const auto& s : d.schedule)
     std::fprintf(f, "%.9f %d %llu %llu\n", s.t_sow_s, s.stream, static_cast<unsigned long long>(s.offset),
                  static_cast<unsigned long long>(s.length));
-  std::fclose(f);
+  close_checked(f, sched);
 }
 
 void write_all(const fs::path& tmp, const fs::path& final_dir, SimResult& r) {

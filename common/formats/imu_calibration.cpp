@@ -10,6 +10,8 @@
 #include <sstream>
 
 #include "common/io/input_error.hpp"
+#include "common/io/output_file.hpp"
+#include "common/io/text_file_lines.hpp"
 
 namespace ldv::calib {
 
@@ -130,7 +132,7 @@ void write_triad(std::ostream& out, const char* name, const TriadCalibration& t,
 ImuCalibration load_calibration(const std::string& path) {
   YAML::Node root;
   try {
-    root = YAML::LoadFile(path);
+    root = YAML::Load(read_small_text_file(path));  // bounded: /dev/zero or a huge file is refused
   } catch (const YAML::BadFile&) {
     throw InputError(path, 0, "cannot open calibration file");
   } catch (const YAML::Exception& e) {
@@ -167,7 +169,7 @@ void save_calibration(const std::string& path, const ImuCalibration& cal) {
   out << "description: \"" << quoted << "\"\n";
   write_triad(out, "accel", cal.accel, "bias_mps2");
   write_triad(out, "gyro", cal.gyro, "bias_rad_s");
-  if (!out) throw InputError(path, 0, "write failed");
+  close_checked(out, path);  // a full disk shows at the flush, not at the << above
 }
 
 

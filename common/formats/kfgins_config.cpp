@@ -5,6 +5,8 @@
 #include <vector>
 
 #include "common/io/input_error.hpp"
+#include "common/io/output_file.hpp"
+#include "common/io/text_file_lines.hpp"
 
 namespace ldv {
 namespace {
@@ -74,7 +76,7 @@ std::string resolve_data_path(const std::string& p, const std::string& config_pa
 KfGinsConfig load_kfgins_config(const std::string& path) {
   YAML::Node root;
   try {
-    root = YAML::LoadFile(path);
+    root = YAML::Load(read_small_text_file(path));  // bounded: /dev/zero or a huge file is refused
   } catch (const YAML::BadFile&) {
     throw InputError(path, 0, "cannot open configuration file");
   } catch (const YAML::ParserException& e) {
@@ -174,6 +176,7 @@ void save_kfgins_config(const KfGinsConfig& c, const std::string& path) {
   if (!out) throw InputError(path, 0, "cannot open file for writing");
   out << "# KF-GINS configuration (written by ldvnav; readable by KF-GINS and `ldv nav --kfgins-config`)\n"
       << e.c_str() << "\n";
+  close_checked(out, path);
 }
 
 }  // namespace ldv

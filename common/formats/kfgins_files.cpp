@@ -1,74 +1,148 @@
 #include "common/formats/kfgins_files.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <cstring>
 #include <memory>
 
+#include "common/formats/imu_time_gaps.hpp"
 #include "common/io/text_table.hpp"
+#include "common/logging.hpp"
 
 namespace ldv {
 namespace {
-using FilePtr = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
-FilePtr open_for_writing(const std::string& path) {
-  FilePtr f(std::fopen(path.c_str(), "wb"), &std::fclose);
-  if (!f) throw InputError(path, 0, "cannot open file for writing");
-  return f;
+
+std::string seconds(double t_s) {
+  char b[48];
+  std::snprintf(b, sizeof b, "%.6f s", t_s);
+  return b;
 }
+
+// Too many dropped records mean the file or its declared layout is wrong: refuse it, naming the first of each.
+void check_dropped(const std::string& path, const DroppedRecords& d, long data_lines, double max_fraction,
+                   const std::string& hint) {
+  if (d.total() == 0 || static_cast<double>(d.total()) <= max_fraction * static_cast<double>(data_lines)) return;
+  throw InputError(path, 0,
+                   std::to_string(d.total()) + " of " + std::to_string(data_lines) + " data lines dropped (more than " +
+                       std::to_string(static_cast<int>(max_fraction * 100.0 + 0.5)) + " %" + hint + "): " +
+                       d.describe());
+}
+
+struct ImuRow {
+  ImuIncrement s;
+  long line;
+};
+
 }  // namespace
 
-std::vector<ImuIncrement> read_kfgins_imu(const std::string& path, ImuReadReport* report) {
-  // Hot path of `ldv nav` (200 Hz x hours): the whole file in one read, fields parsed straight into
-  // the samples, no per-row allocation (the table reader's checks and messages).
-  std::vector<ImuIncrement> out;
+std::vector<ImuIncrement> read_kfgins_imu(const std::string& path, ImuReadReport* report, const ImuReadOptions& opt) {
+  // Hot path of `ldv nav` (200 Hz x hours): read in blocks, fields parsed straight into the samples, no per-row
+  // allocation.
+  if (opt.columns < 7 || opt.columns > 64)
+    throw InputError(path, 0, opt.declared_by + " = " + std::to_string(opt.columns) + ": expected 7 to 64 columns");
   ImuReadReport rep;
   TextFileLines lines(path);
-  out.reserve(lines.estimated_lines());
-  double v[7];
+  std::vector<ImuRow> rows;
+  rows.reserve(lines.estimated_lines());
+  double v[64];
+  FieldError err;
   std::string_view text;
   while (lines.next(text)) {
     const long line = lines.line_number();
-    const int n = parse_numeric_line(text, v, 7, path, line);
+    const int n = scan_numeric_line(text, v, 64, &err);
     if (n == 0) continue;
-    if (n < 7 || n > 64) throw_column_count(path, line, 7, 64, n);
-    ImuIncrement s;
-    s.t_s = v[0];
-    s.dtheta_b_rad = Vec3(v[1], v[2], v[3]);
-    s.dvel_b_mps = Vec3(v[4], v[5], v[6]);
-    if (!out.empty()) {
-      const double dt = s.t_s - out.back().t_s;
-      if (dt < 0) {
-        throw InputError(path, line, "time goes backwards: " + std::to_string(s.t_s) + " s after " +
-                                         std::to_string(out.back().t_s) + " s");
-      }
-      if (dt == 0) {
-        ++rep.skipped_duplicates;
+    if (n < 0) {
+      rep.dropped.add(err.non_finite ? DropReason::kNonFinite : DropReason::kMalformed, path, line, err.message());
+      continue;
+    }
+    if (n != opt.columns) {
+      rep.dropped.add(DropReason::kWrongColumns, path, line,
+                      "expected " + std::to_string(opt.columns) + " columns (" + opt.declared_by + "), found " +
+                          std::to_string(n));
+      continue;
+    }
+    // No IMU sample holds this (100 rad, 1e4 m/s in one interval): a corrupted field, not a measurement.
+    constexpr double kMaxDtheta_rad = 100.0, kMaxDvel_mps = 1e4, kMaxTime_s = 1e10;  // and 300 years of time
+    if (std::abs(v[0]) > kMaxTime_s) {
+      rep.dropped.add(DropReason::kOutOfRange, path, line, "column 1: time beyond 1e10 s");
+      continue;
+    }
+    if (std::max({std::abs(v[1]), std::abs(v[2]), std::abs(v[3])}) > kMaxDtheta_rad ||
+        std::max({std::abs(v[4]), std::abs(v[5]), std::abs(v[6])}) > kMaxDvel_mps) {
+      rep.dropped.add(DropReason::kOutOfRange, path, line,
+                      "an increment beyond any IMU (|dtheta| <= 100 rad, |dvel| <= 1e4 m/s per sample)");
+      continue;
+    }
+    ImuRow r{{}, line};
+    r.s.t_s = v[0];
+    r.s.dtheta_b_rad = Vec3(v[1], v[2], v[3]);
+    r.s.dvel_b_mps = Vec3(v[4], v[5], v[6]);
+    if (!rows.empty()) {
+      const double t_last = rows.back().s.t_s;
+      if (r.s.t_s == t_last) {
+        rep.dropped.add(DropReason::kRepeated, path, line, "time repeats: " + seconds(r.s.t_s));
         continue;
       }
-      s.dt_s = dt;
+      if (r.s.t_s < t_last) {
+        // The record before jumped ahead of both neighbours: that one was corrupted, this one continues the run.
+        // (One corrupted digit of a time stamp would otherwise drop every record up to the corrupted time.)
+        const bool last_jumped = rows.size() >= 2 && r.s.t_s > rows[rows.size() - 2].s.t_s;
+        if (last_jumped) {
+          rep.dropped.add(DropReason::kTimeJump, path, rows.back().line,
+                          "time " + seconds(t_last) + " is ahead of both neighbours (" +
+                              seconds(rows[rows.size() - 2].s.t_s) + ", " + seconds(r.s.t_s) + ")");
+          rows.pop_back();
+        } else {
+          rep.dropped.add(DropReason::kTimeBackwards, path, line,
+                          "time goes backwards: " + seconds(r.s.t_s) + " after " + seconds(t_last));
+          continue;
+        }
+      }
     }
-    out.push_back(s);
+    rows.push_back(r);
   }
-  if (out.empty()) throw InputError(path, 0, "no IMU samples (expected rows: sow dtheta_xyz dvel_xyz)");
+  check_dropped(path, rep.dropped, rows.size() + rep.dropped.total(), opt.max_dropped_fraction,
+                ": is " + opt.declared_by + " = " + std::to_string(opt.columns) + " right?");
+  if (rows.empty()) throw InputError(path, 0, "no IMU samples (expected rows: sow dtheta_xyz dvel_xyz)");
+
+  std::vector<ImuIncrement> out;
+  out.reserve(rows.size());
+  for (size_t i = 0; i < rows.size(); ++i) {
+    out.push_back(rows[i].s);
+    if (i > 0) out.back().dt_s = rows[i].s.t_s - rows[i - 1].s.t_s;
+  }
   if (out.size() > 1) out[0].dt_s = out[1].dt_s;
-  // Gaps: intervals much longer than the median interval.
-  if (out.size() > 2) {
-    std::vector<double> dts;
-    dts.reserve(out.size());
-    for (size_t i = 1; i < out.size(); ++i) dts.push_back(out[i].dt_s);
-    std::nth_element(dts.begin(), dts.begin() + dts.size() / 2, dts.end());
-    const double median = dts[dts.size() / 2];
-    for (size_t i = 1; i < out.size(); ++i)
-      if (out[i].dt_s > 1.5 * median) ++rep.gaps;
-  }
+  // Gaps: intervals much longer than the median one (the data's own rate: a configuration's default imudatarate
+  // of 200 Hz may not be the file's).
+  std::vector<long> line_of;
+  line_of.reserve(rows.size());
+  for (const ImuRow& r : rows) line_of.push_back(r.line);
+  const ImuGapSummary g = find_imu_gaps(out, line_of, opt.long_gap_factor);
+  rep.nominal_dt_s = g.nominal_dt_s;
+  rep.gaps = g.gaps;
+  rep.long_gaps = g.long_gaps;
+  rep.longest_gap_s = g.longest_gap_s;
+  if (opt.rate_hz > 0 && out.size() > 1 && std::abs(g.nominal_dt_s * opt.rate_hz - 1.0) > 0.2)
+    spdlog::warn("{}: median IMU interval {:g} s, but imudatarate says {:g} Hz", path, g.nominal_dt_s, opt.rate_hz);
+  if (!g.long_gaps.empty())
+    spdlog::warn("{}: {} gaps longer than {:g} median intervals; longest {:g} s", path, g.long_gaps.size(),
+                 opt.long_gap_factor, g.longest_gap_s);
   rep.rows = static_cast<long>(out.size());
   if (report) *report = rep;
   return out;
 }
 
 void write_kfgins_imu(const std::string& path, const std::vector<ImuIncrement>& imu) {
-  auto f = open_for_writing(path);
-  char line[512];
+  OutputFile f(path);
+  std::vector<char> buf(static_cast<size_t>(1) << 16);
+  size_t used = 0;
   for (const auto& s : imu) {
+    if (used + 512 > buf.size()) {
+      f.write(buf.data(), used);
+      used = 0;
+    }
+    char* line = buf.data() + used;
     int n = format_fixed(line, s.t_s, 6);
     for (int i = 0; i < 3; ++i) {
       line[n++] = ' ';
@@ -79,60 +153,97 @@ void write_kfgins_imu(const std::string& path, const std::vector<ImuIncrement>& 
       n += std::snprintf(line + n, 40, "%.15e", s.dvel_b_mps[i]);
     }
     line[n++] = '\n';
-    std::fwrite(line, 1, n, f.get());
+    used += static_cast<size_t>(n);
   }
+  f.write(buf.data(), used);
+  f.close();
 }
 
-std::vector<GnssFix> read_kfgins_gnss(const std::string& path) {
+std::vector<GnssFix> read_kfgins_gnss(const std::string& path, GnssReadReport* report) {
   std::vector<GnssFix> out;
-  read_numeric_table(path, 7, 13, [&](long line, const std::vector<double>& v) {
-    if (v.size() != 7 && v.size() != 13) {
-      throw InputError(path, line, "expected 7 or 13 columns, found " + std::to_string(v.size()));
+  GnssReadReport rep;
+  TextFileLines lines(path);
+  double v[13];
+  FieldError err;
+  std::string_view text;
+  while (lines.next(text)) {
+    const long line = lines.line_number();
+    const int n = scan_numeric_line(text, v, 13, &err);
+    if (n == 0) continue;
+    if (n < 0) {
+      rep.dropped.add(err.non_finite ? DropReason::kNonFinite : DropReason::kMalformed, path, line, err.message());
+      continue;
+    }
+    if (rep.columns == 0 && (n == 7 || n == 13)) rep.columns = n;
+    if (n != rep.columns) {
+      rep.dropped.add(DropReason::kWrongColumns, path, line,
+                      "expected " + (rep.columns ? std::to_string(rep.columns) + " columns (as the first data line)"
+                                                 : std::string("7 or 13 columns")) +
+                          ", found " + std::to_string(n));
+      continue;
     }
     GnssFix g;
     g.t_s = v[0];
-    if (std::abs(v[1]) > 90.0) throw InputError(path, line, "column 2: latitude must be within +-90 deg");
     g.pos = {v[1] * kDegToRad, v[2] * kDegToRad, v[3]};
-    if (v.size() == 7) {
+    if (n == 7) {
       g.pos_std_ned_m = Vec3(v[4], v[5], v[6]);
     } else {
       g.has_velocity = true;
       g.vel_n_mps = Vec3(v[4], v[5], v[6]);
       g.pos_std_ned_m = Vec3(v[7], v[8], v[9]);
       g.vel_std_n_mps = Vec3(v[10], v[11], v[12]);
-      if ((g.vel_std_n_mps.array() <= 0).any())
-        throw InputError(path, line, "velocity std (columns 11-13) must be positive");
     }
-    if ((g.pos_std_ned_m.array() <= 0).any())
-      throw InputError(path, line, "position std must be positive");
-    if (!out.empty() && g.t_s <= out.back().t_s)
-      throw InputError(path, line, "time does not increase: " + std::to_string(g.t_s) + " s after " +
-                                       std::to_string(out.back().t_s) + " s");
+    if (std::abs(v[1]) > 90.0) {
+      rep.dropped.add(DropReason::kOutOfRange, path, line, "column 2: latitude must be within +-90 deg");
+      continue;
+    }
+    if ((g.pos_std_ned_m.array() <= 0).any() || (g.has_velocity && (g.vel_std_n_mps.array() <= 0).any())) {
+      rep.dropped.add(DropReason::kOutOfRange, path, line, "every std must be positive");
+      continue;
+    }
+    if (!out.empty() && g.t_s <= out.back().t_s) {
+      const bool same = g.t_s == out.back().t_s;
+      rep.dropped.add(same ? DropReason::kRepeated : DropReason::kTimeBackwards, path, line,
+                      "time does not increase: " + seconds(g.t_s) + " after " + seconds(out.back().t_s));
+      continue;
+    }
     out.push_back(g);
-  });
+  }
+  check_dropped(path, rep.dropped, static_cast<long>(out.size()) + rep.dropped.total(), 0.10, "");
   if (out.empty()) throw InputError(path, 0, "no GNSS solutions (expected rows: sow lat lon h sN sE sD)");
+  rep.rows = static_cast<long>(out.size());
+  if (report) *report = rep;
   return out;
 }
 
 void write_kfgins_gnss(const std::string& path, const std::vector<GnssFix>& gnss, bool with_velocity) {
-  auto f = open_for_writing(path);
+  OutputFile f(path);
+  char line[1024];
   for (const auto& g : gnss) {
+    int n = 0;
     if (with_velocity) {
-      std::fprintf(f.get(), "%.6f %.11f %.11f %.5f %.5f %.5f %.5f %.5f %.5f %.5f %.5f %.5f %.5f\n", g.t_s,
-                   g.pos.lat_rad * kRadToDeg, g.pos.lon_rad * kRadToDeg, g.pos.h_m, g.vel_n_mps.x(), g.vel_n_mps.y(),
-                   g.vel_n_mps.z(), g.pos_std_ned_m.x(), g.pos_std_ned_m.y(), g.pos_std_ned_m.z(),
-                   g.vel_std_n_mps.x(), g.vel_std_n_mps.y(), g.vel_std_n_mps.z());
+      n = std::snprintf(line, sizeof line, "%.6f %.11f %.11f %.5f %.5f %.5f %.5f %.5f %.5f %.5f %.5f %.5f %.5f\n",
+                        g.t_s, g.pos.lat_rad * kRadToDeg, g.pos.lon_rad * kRadToDeg, g.pos.h_m, g.vel_n_mps.x(),
+                        g.vel_n_mps.y(), g.vel_n_mps.z(), g.pos_std_ned_m.x(), g.pos_std_ned_m.y(), g.pos_std_ned_m.z(),
+                        g.vel_std_n_mps.x(), g.vel_std_n_mps.y(), g.vel_std_n_mps.z());
     } else {
-      std::fprintf(f.get(), "%.6f %.11f %.11f %.5f %.5f %.5f %.5f\n", g.t_s, g.pos.lat_rad * kRadToDeg,
-                   g.pos.lon_rad * kRadToDeg, g.pos.h_m, g.pos_std_ned_m.x(), g.pos_std_ned_m.y(),
-                   g.pos_std_ned_m.z());
+      n = std::snprintf(line, sizeof line, "%.6f %.11f %.11f %.5f %.5f %.5f %.5f\n", g.t_s, g.pos.lat_rad * kRadToDeg,
+                        g.pos.lon_rad * kRadToDeg, g.pos.h_m, g.pos_std_ned_m.x(), g.pos_std_ned_m.y(),
+                        g.pos_std_ned_m.z());
     }
+    // A value too long for the line (1e300 m) is cut by snprintf: refuse rather than write a cut row.
+    if (n < 0 || n >= static_cast<int>(sizeof line))
+      throw InputError(path, 0, "GNSS record at " + seconds(g.t_s) + ": a value too large to write");
+    f.write(line, static_cast<size_t>(n));
   }
+  f.close();
 }
 
 std::vector<NavRecord> read_nav(const std::string& path) {
   std::vector<NavRecord> out;
   read_numeric_table(path, 11, 64, [&](long line, const std::vector<double>& v) {
+    if (!(v[0] >= 0.0 && v[0] <= 9999.0 && v[0] == std::floor(v[0])))
+      throw InputError(path, line, "column 1: expected a GPS week (an integer 0..9999), found " + std::to_string(v[0]));
     NavRecord r;
     r.week = static_cast<int>(v[0]);
     r.sow_s = v[1];
@@ -145,39 +256,55 @@ std::vector<NavRecord> read_nav(const std::string& path) {
   return out;
 }
 
-NavWriter::NavWriter(const std::string& path)
-    : file_(std::fopen(path.c_str(), "wb")), path_(path), buf_(static_cast<size_t>(1) << 20) {
-  if (!file_) throw InputError(path, 0, "cannot open file for writing");
-}
+NavWriter::NavWriter(const std::string& path) : file_(path), buf_(static_cast<size_t>(1) << 20) {}
 
 NavWriter::~NavWriter() {
-  if (file_) {
+  try {
     flush();
-    std::fclose(file_);
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
   }
 }
 
 void NavWriter::flush() {
-  if (used_ > 0) std::fwrite(buf_.data(), 1, used_, file_);
+  const size_t n = used_;
   used_ = 0;
+  file_.write(buf_.data(), n);
+}
+
+void NavWriter::close() {
+  flush();
+  file_.close();
 }
 
 void NavWriter::write(const NavRecord& r) {
-  if (used_ + 512 > buf_.size()) flush();
+  static constexpr const char* kNames[] = {"sow", "lat", "lon", "h", "vN", "vE", "vD", "roll", "pitch", "yaw"};
+  const double v[] = {r.sow_s,          r.pos.lat_rad * kRadToDeg, r.pos.lon_rad * kRadToDeg, r.pos.h_m,
+                      r.vel_n_mps[0],   r.vel_n_mps[1],            r.vel_n_mps[2],            r.rpy_rad[0] * kRadToDeg,
+                      r.rpy_rad[1] * kRadToDeg, r.rpy_rad[2] * kRadToDeg};
+  static constexpr int kDecimals[] = {6, 11, 11, 5, 6, 6, 6, 8, 8, 8};
+  constexpr int kFields = 10;
+  for (int i = 0; i < kFields; ++i) {
+    if (!std::isfinite(v[i])) {
+      flush();  // the rows before it are kept
+      throw InputError(file_.path(), rows_ + 1,
+                       std::string("cannot write a non-finite ") + kNames[i] + " (" + std::to_string(v[i]) +
+                           ") in the record at week " + std::to_string(r.week) + ", " + seconds(r.sow_s) +
+                           ": the solution diverged; the " + std::to_string(rows_) + " rows before it are written");
+    }
+  }
+  // Worst case of a row: the week and every field at format_fixed's longest, separators and the newline.
+  constexpr size_t kMaxRow = 16 + kFields * (kFormatFixedMaxChars + 1) + 1;
+  if (used_ + kMaxRow > buf_.size()) flush();
   char* line = buf_.data() + used_;
   int n = static_cast<int>(std::to_chars(line, line + 16, r.week).ptr - line);
-  auto put = [&](double v, int decimals) {
+  for (int i = 0; i < kFields; ++i) {
     line[n++] = ' ';
-    n += format_fixed(line + n, v, decimals);
-  };
-  put(r.sow_s, 6);
-  put(r.pos.lat_rad * kRadToDeg, 11);
-  put(r.pos.lon_rad * kRadToDeg, 11);
-  put(r.pos.h_m, 5);
-  for (int i = 0; i < 3; ++i) put(r.vel_n_mps[i], 6);
-  for (int i = 0; i < 3; ++i) put(r.rpy_rad[i] * kRadToDeg, 8);
+    n += format_fixed(line + n, v[i], kDecimals[i]);
+  }
   line[n++] = '\n';
   used_ += static_cast<size_t>(n);
+  ++rows_;
 }
 
 }  // namespace ldv

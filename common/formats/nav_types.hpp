@@ -29,6 +29,14 @@ struct GnssFix {
   double ratio = 0.0;
 };
 
+// An interval between two kept IMU records much longer than the nominal one, found by a reader (the record
+// after it is kept; its dt_s spans the whole hole: an integrator must not take it as one increment).
+struct ImuTimeGap {
+  double t_before_s = 0.0, t_after_s = 0.0;  // GPS seconds of week of the records either side
+  long line = 0;                             // file line of the record after the gap
+  double length_s() const { return t_after_s - t_before_s; }
+};
+
 // A navigation solution record (the KF-GINS .nav layout).
 struct NavRecord {
   int week = 0;

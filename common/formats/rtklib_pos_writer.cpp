@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "common/io/input_error.hpp"
+#include "common/io/output_file.hpp"
 #include "common/time/gps_time.hpp"
 
 namespace ldv {
@@ -36,7 +37,7 @@ void write_rtklib_pos(const std::string& path, const std::vector<GnssFix>& fixes
                    -g.vel_n_mps.z(), g.vel_std_n_mps.x(), g.vel_std_n_mps.y(), g.vel_std_n_mps.z(), 0.0, 0.0, 0.0);
     std::fprintf(o, "\n");
   }
-  if (std::ferror(o)) throw InputError(path, 0, "write error");
+  close_checked(f.release(), path);  // buffered data meets a full disk only here
 }
 
 }  // namespace ldv

@@ -6,13 +6,13 @@
 #include <iterator>
 
 #include "common/io/input_error.hpp"
+#include "common/io/text_file_lines.hpp"
 
 namespace ldv {
 
 RtklibTimeTag read_rtklib_time_tag(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, 0, "cannot open RTKLIB time-tag file");
-  const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // Bounded (a device or a wrong huge file is refused): 256 MiB is 33 million tags, years of 1 Hz chunks.
+  const std::string bytes = read_small_text_file(path, static_cast<size_t>(256) << 20);
   constexpr size_t kHeader = 60, kFixed = kHeader + 4 + 4 + 8;
   if (bytes.size() < kFixed || std::strncmp(bytes.data(), "TIMETAG RTKLIB", 14) != 0)
     throw InputError(path, 0, "not an RTKLIB time-tag file (expected the 'TIMETAG RTKLIB' header and 76 bytes)");

@@ -7,11 +7,16 @@ namespace ldv {
 
 bool write_file_atomically(const std::string& path, const std::string& text) {
   const std::string tmp = path + ".tmp";
+  std::error_code ec;
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out || !(out << text) || !out.flush()) return false;
+    const bool written = out && (out << text) && out.flush();
+    out.close();  // checked too: the rename must never put an incomplete file in place of a good one
+    if (!written || out.fail()) {
+      std::filesystem::remove(tmp, ec);
+      return false;
+    }
   }
-  std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
   return !ec;
 }

@@ -44,75 +44,12 @@ double parse_double(std::string_view field, const std::string& file, long line, 
   return v;
 }
 
-TextFileLines::TextFileLines(const std::string& path) : path_(path) {
-  file_ = std::fopen(path.c_str(), "rb");
-  if (!file_) throw InputError(path, 0, "cannot open file for reading");
-  if (std::fseek(file_, 0, SEEK_END) == 0) file_size_ = std::ftell(file_);
-  if (std::fseek(file_, 0, SEEK_SET) != 0) file_size_ = -1;
-  cap_ = static_cast<size_t>(1) << 20;
-  buf_.reset(new char[cap_]);
+std::string FieldError::message() const {
+  return "column " + std::to_string(column) + ": expected a " + (non_finite ? "finite number" : "number") +
+         ", found '" + text + "'";
 }
 
-TextFileLines::~TextFileLines() {
-  if (file_) std::fclose(file_);
-}
-
-bool TextFileLines::refill() {
-  if (eof_) return false;
-  // Keep the unfinished line at the front; grow only for a line longer than the buffer.
-  const size_t rest = end_ - begin_;
-  if (rest == cap_) {
-    std::unique_ptr<char[]> bigger(new char[2 * cap_]);
-    std::memcpy(bigger.get(), buf_.get() + begin_, rest);
-    buf_ = std::move(bigger);
-    cap_ *= 2;
-  } else if (begin_ > 0) {
-    std::memmove(buf_.get(), buf_.get() + begin_, rest);
-  }
-  begin_ = 0;
-  end_ = rest;
-  const size_t got = std::fread(buf_.get() + end_, 1, cap_ - end_, file_);
-  if (got == 0) {
-    if (std::ferror(file_)) throw InputError(path_, line_no_ + 1, "read error");
-    eof_ = true;
-    return false;
-  }
-  end_ += got;
-  return true;
-}
-
-bool TextFileLines::next(std::string_view& line) {
-  for (;;) {
-    const char* b = buf_.get() + begin_;
-    const void* nl = std::memchr(b, '\n', end_ - begin_);
-    if (nl) {
-      const size_t len = static_cast<size_t>(static_cast<const char*>(nl) - b);
-      line = std::string_view(b, len);
-      begin_ += len + 1;
-      ++line_no_;
-      return true;
-    }
-    if (!refill()) break;
-  }
-  if (begin_ < end_) {  // an unterminated last line
-    line = std::string_view(buf_.get() + begin_, end_ - begin_);
-    begin_ = end_;
-    ++line_no_;
-    return true;
-  }
-  return false;
-}
-
-size_t TextFileLines::estimated_lines() {
-  if (end_ == begin_) refill();
-  const size_t n = end_ - begin_;
-  if (n == 0 || file_size_ <= 0) return 0;
-  const long lines = static_cast<long>(std::count(buf_.get() + begin_, buf_.get() + end_, '\n'));
-  if (lines == 0) return 1;
-  return static_cast<size_t>(static_cast<double>(file_size_) * lines / n * 1.02) + 16;
-}
-
-int parse_numeric_line(std::string_view line, double* values, int max_store, const std::string& path, long line_no) {
+int scan_numeric_line(std::string_view line, double* values, int max_store, FieldError* error) {
   const char* p = line.data();
   const char* const end = p + line.size();
   int n = 0;
@@ -125,16 +62,27 @@ int parse_numeric_line(std::string_view line, double* values, int max_store, con
     double v = 0.0;
     auto [ptr, ec] = std::from_chars(q, end, v);
     if (ec != std::errc() || (ptr < end && !is_separator(*ptr)) || !std::isfinite(v)) {
-      // Slow path only for the message (same wording as parse_double).
-      const char* fe = field;
-      while (fe < end && !is_separator(*fe)) ++fe;
-      parse_double(std::string_view(field, static_cast<size_t>(fe - field)), path, line_no, n + 1);
-      throw InputError(path, line_no, "column " + std::to_string(n + 1) + ": expected a number");
+      if (error) {
+        const char* fe = field;
+        while (fe < end && !is_separator(*fe)) ++fe;
+        error->column = n + 1;
+        // from_chars reports out-of-range (1e999) as an error with the whole field consumed: not finite either.
+        error->non_finite = (ec == std::errc() || ec == std::errc::result_out_of_range) && (ptr == fe);
+        error->text.assign(field, std::min<size_t>(static_cast<size_t>(fe - field), 40));
+      }
+      return -1;
     }
     if (n < max_store) values[n] = v;
     ++n;
     p = ptr;
   }
+  return n;
+}
+
+int parse_numeric_line(std::string_view line, double* values, int max_store, const std::string& path, long line_no) {
+  FieldError err;
+  const int n = scan_numeric_line(line, values, max_store, &err);
+  if (n < 0) throw InputError(path, line_no, err.message());
   return n;
 }
 
@@ -233,7 +181,28 @@ int format_fixed(char* buf, double value, int decimals) {
       return static_cast<int>(p - buf);
     }
   }
-  auto res = std::to_chars(buf, buf + 64, value, std::chars_format::fixed, decimals);
+  // Everything below writes at most kFormatFixedMaxChars and checks the conversion (a value too large for
+  // the buffer once left the buffer's old bytes in the file).
+  if (std::isnan(value)) {
+    std::memcpy(buf, "nan", 3);
+    return 3;
+  }
+  if (std::isinf(value)) {
+    if (value < 0) {
+      std::memcpy(buf, "-inf", 4);
+      return 4;
+    }
+    std::memcpy(buf, "inf", 3);
+    return 3;
+  }
+  decimals = std::clamp(decimals, 0, 17);
+  const bool fits_fixed = std::fabs(value) < 1e21;  // at most 21 integer digits
+  auto res = fits_fixed ? std::to_chars(buf, buf + kFormatFixedMaxChars, value, std::chars_format::fixed, decimals)
+                        : std::to_chars(buf, buf + kFormatFixedMaxChars, value, std::chars_format::scientific, 17);
+  if (res.ec != std::errc()) {  // cannot happen with the bounds above; never hand out unwritten bytes
+    std::memcpy(buf, "nan", 3);
+    return 3;
+  }
   return static_cast<int>(res.ptr - buf);
 }
 

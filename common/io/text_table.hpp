@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "common/io/input_error.hpp"
+#include "common/io/text_file_lines.hpp"
 
 namespace ldv {
 
@@ -26,34 +27,20 @@ double parse_double(std::string_view field, const std::string& file, long line, 
 void read_numeric_table(const std::string& path, int min_columns, int max_columns,
                         const std::function<void(long, const std::vector<double>&)>& on_row);
 
-// The low-level fast path under read_numeric_table, for readers of very long files (imu.txt): the file
-// is read in 1 MiB blocks into one reused buffer (no per-line copy or allocation, and no page faults on a
-// whole-file buffer: they cost more than the parsing on a virtual machine), lines handed out as views.
-class TextFileLines {
- public:
-  explicit TextFileLines(const std::string& path);  // throws InputError if it cannot be opened/read
-  ~TextFileLines();
-  TextFileLines(const TextFileLines&) = delete;
-  TextFileLines& operator=(const TextFileLines&) = delete;
-  // Next line without its '\n' (a trailing '\r' is kept: parse_numeric_line treats it as a separator).
-  // The view is valid until the next call.
-  bool next(std::string_view& line);
-  long line_number() const { return line_no_; }  // of the line last returned (1-based)
-  long size_bytes() const { return file_size_; } // -1 when unknown (a pipe)
-  // Expected number of lines from the file size and the lines of the first block (for reserve()).
-  size_t estimated_lines();
-  const std::string& path() const { return path_; }
+// The line reader under read_numeric_table (bounded line length): common/io/text_file_lines.hpp.
 
- private:
-  bool refill();
-  std::string path_;
-  std::FILE* file_ = nullptr;
-  long file_size_ = -1;
-  std::unique_ptr<char[]> buf_;
-  size_t cap_ = 0, begin_ = 0, end_ = 0;
-  bool eof_ = false;
-  long line_no_ = 0;
+// Why scan_numeric_line refused a line: the 1-based column, whether the field was a number that is not
+// finite (nan, inf, 1e999), and the field's text (cut to 40 characters) for the message.
+struct FieldError {
+  int column = 0;
+  bool non_finite = false;
+  std::string text;
+  std::string message() const;  // "column 4: expected a number, found 'abc'"
 };
+
+// Like parse_numeric_line, without throwing (for readers that count and drop bad records): returns -1 and fills
+// *error when a field is not a finite number.
+int scan_numeric_line(std::string_view line, double* values, int max_store, FieldError* error);
 
 // Parses every field of one line as read_numeric_table does (same checks and messages): stores the first
 // `max_store` values in `values`, checks the others, and returns the number of fields (0: empty or comment).
@@ -62,10 +49,16 @@ int parse_numeric_line(std::string_view line, double* values, int max_store, con
 // The message read_numeric_table gives for a wrong column count.
 [[noreturn]] void throw_column_count(const std::string& path, long line_no, int min_columns, int max_columns, int found);
 
-// Formats a double into buf with `decimals` fixed decimals (0..17); returns the number of chars written.
-// Exact integer arithmetic for |value| * 10^decimals < 2^52 (the same digits as std::to_chars),
-// std::to_chars otherwise. Several times faster than printf: the full-rate
-// outputs call it ~2 million times per 900 s file.
+// Longest text format_fixed writes (sign, 21 integer digits, point, 17 decimals; or "-inf").
+constexpr int kFormatFixedMaxChars = 48;
+
+// Formats a double into buf (room for kFormatFixedMaxChars) with `decimals` fixed decimals (clamped to
+// 0..17); returns the number of chars written, never more than kFormatFixedMaxChars. Exact integer arithmetic
+// for |value| * 10^decimals < 2^52 (the same digits as std::to_chars), std::to_chars otherwise. Beyond
+// |value| >= 1e21 the fixed form would need up to 309 digits: such a value is written in scientific form
+// (%.17e: still a number every reader parses back exactly). Non-finite values are written as nan, inf, -inf
+// (printf's tokens); writers whose format has no place for them (the .nav) refuse them before calling this.
+// Several times faster than printf: the full-rate outputs call it ~2 million times per 900 s file.
 int format_fixed(char* buf, double value, int decimals);
 
 }  // namespace ldv

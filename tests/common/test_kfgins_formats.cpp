@@ -49,7 +49,7 @@ TEST(KfGinsFiles, BadImuRowsNameFileLineAndColumn) {
   const std::string p1 = write_temp("bad1.txt", "1 0 0 0 0 0 0\n2 0 0 abc 0 0 0\n");
   EXPECT_NE(error_of([&] { read_kfgins_imu(p1); }).find("bad1.txt:2: column 4"), std::string::npos);
   const std::string p2 = write_temp("bad2.txt", "1 0 0 0 0 0 0\n2 0 0 0 0 0\n");
-  EXPECT_NE(error_of([&] { read_kfgins_imu(p2); }).find(":2: expected 7 to 64 columns, found 6"), std::string::npos);
+  EXPECT_NE(error_of([&] { read_kfgins_imu(p2); }).find(":2: expected 7 columns (imudatalen), found 6"), std::string::npos);
   const std::string p3 = write_temp("bad3.txt", "2 0 0 0 0 0 0\n1 0 0 0 0 0 0\n");
   EXPECT_NE(error_of([&] { read_kfgins_imu(p3); }).find(":2: time goes backwards"), std::string::npos);
   const std::string p4 = write_temp("bad4.txt", "1 0 0 nan 0 0 0\n");
@@ -58,16 +58,21 @@ TEST(KfGinsFiles, BadImuRowsNameFileLineAndColumn) {
   EXPECT_NE(error_of([&] { read_kfgins_imu(p5); }).find("no IMU samples"), std::string::npos);
 }
 
-TEST(KfGinsFiles, GnssSevenAndThirteenColumns) {
-  const std::string p = write_temp("gnss.txt",
-                                   "100.0 30.1 114.2 20.0 0.01 0.02 0.03\n"
-                                   "101.0 30.1 114.2 20.0 1 2 3 0.01 0.02 0.03 0.1 0.2 0.3\n");
-  const auto g = read_kfgins_gnss(p);
-  ASSERT_EQ(g.size(), 2u);
-  EXPECT_FALSE(g[0].has_velocity);
-  EXPECT_TRUE(g[1].has_velocity);
-  EXPECT_DOUBLE_EQ(g[1].vel_n_mps.z(), 3.0);
-  EXPECT_DOUBLE_EQ(g[1].pos_std_ned_m.y(), 0.02);
+TEST(KfGinsFiles, GnssSevenOrThirteenColumns) {
+  // One layout per file (the first data line decides): a line of the other layout is a corrupted line.
+  const auto g7 = read_kfgins_gnss(write_temp("gnss7.txt", "100.0 30.1 114.2 20.0 0.01 0.02 0.03\n"));
+  ASSERT_EQ(g7.size(), 1u);
+  EXPECT_FALSE(g7[0].has_velocity);
+  const auto g = read_kfgins_gnss(write_temp("gnss13.txt", "101.0 30.1 114.2 20.0 1 2 3 0.01 0.02 0.03 0.1 0.2 0.3\n"));
+  ASSERT_EQ(g.size(), 1u);
+  EXPECT_TRUE(g[0].has_velocity);
+  EXPECT_DOUBLE_EQ(g[0].vel_n_mps.z(), 3.0);
+  EXPECT_DOUBLE_EQ(g[0].pos_std_ned_m.y(), 0.02);
+  const std::string mixed = write_temp("gnss_mix.txt",
+                                       "100.0 30.1 114.2 20.0 0.01 0.02 0.03\n"
+                                       "101.0 30.1 114.2 20.0 1 2 3 0.01 0.02 0.03 0.1 0.2 0.3\n");
+  EXPECT_NE(error_of([&] { read_kfgins_gnss(mixed); }).find("gnss_mix.txt:2: expected 7 columns (as the first data line)"),
+            std::string::npos);
 }
 
 TEST(KfGinsConfig, ReadsKfGinsKeysInEngineeringUnitsAndReportsWrongTypes) {

@@ -108,18 +108,25 @@ TEST_F(NavCli, ModelAddDropOutAndPosInput) {
 
 TEST_F(NavCli, BadInputsFailWithFileAndLine) {
   const fs::path d = dir_ / "drive";
-  // A non-numeric field on line 3 of a copy of imu.txt.
+  // A non-numeric field on lines 3, 40 and 77 of a copy of imu.txt (3 %): dropped, counted and named by file and
+  // line, with a warning (more than 2 %); an error with --strict (issue 13).
   {
     std::ifstream in(d / "imu.txt");
     std::ofstream out(dir_ / "bad_imu.txt");
     std::string line;
-    for (int i = 1; std::getline(in, line) && i <= 100; ++i) out << (i == 3 ? line + "x" : line) << "\n";
+    for (int i = 1; std::getline(in, line) && i <= 100; ++i) out << (i % 37 == 3 ? line + "x" : line) << "\n";
   }
-  Result r = run_ldv("--kfgins-config " + (d / "kfgins.yaml").string() + " --imu " + (dir_ / "bad_imu.txt").string() +
-                         " --out " + (dir_ / "b.nav").string(),
-                     dir_);
-  EXPECT_NE(r.code, 0);
+  const std::string bad_imu_args = "--kfgins-config " + (d / "kfgins.yaml").string() + " --imu " +
+                                   (dir_ / "bad_imu.txt").string() + " --out " + (dir_ / "b.nav").string();
+  Result r = run_ldv(bad_imu_args, dir_);
+  EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("bad_imu.txt:3: column 7"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("WARNING: IMU file dropped 3.0 %"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("3 malformed (first: " + (dir_ / "bad_imu.txt").string() + ":3: column 7"), std::string::npos)
+      << r.err;
+  r = run_ldv(bad_imu_args + " --strict", dir_);
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("--strict: the inputs are not clean"), std::string::npos) << r.err;
   // A configuration key of the wrong type, with its line.
   {
     std::ifstream in(d / "kfgins.yaml");

@@ -5,6 +5,7 @@
 
 #include "common/io/input_error.hpp"
 #include "real_data.hpp"
+#include "toolbox/calib/imu_calibration.hpp"
 #include "toolbox/calib/static_calibration.hpp"
 
 namespace ldv::calib {
@@ -25,6 +26,17 @@ void expect_input_error(F&& f, std::initializer_list<const char*> fragments) {
   } catch (const InputError& e) {
     for (const char* s : fragments) EXPECT_NE(std::string(e.what()).find(s), std::string::npos) << e.what();
   }
+}
+
+// Issue 13: a device as input is refused at once (it once read forever); a write error is reported, not "written".
+TEST(CalibBadInput, DevicesAreRefusedAndAFullDiskIsAnError) {
+  expect_input_error([] { read_csv_log("/dev/zero", {}); }, {"/dev/zero", "character device"});
+  expect_input_error([] { load_calibration("/dev/zero"); }, {"/dev/zero", "character device"});
+  const std::string endless = write_temp("endless.csv", "Fs,100\n" + std::string(100000, '7'));
+  expect_input_error([&] { read_csv_log(endless, {}); }, {"endless.csv:2", "line longer than"});
+  ImuCalibration cal;
+  cal.description = "test";
+  expect_input_error([&] { save_calibration("/dev/full", cal); }, {"/dev/full", "failed"});
 }
 
 TEST(CalibBadInput, MissingFileIsNamed) {

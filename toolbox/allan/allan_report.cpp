@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/io/output_file.hpp"
 #include "toolbox/allan/sensor_units.hpp"
 
 namespace ldv::allan {
@@ -244,7 +245,7 @@ void write_json(const std::string& path, const std::string& input, const std::ve
   std::ofstream f(path);
   if (!f) throw std::runtime_error("cannot write " + path);
   f << o.str();
-  if (!f) throw std::runtime_error("error writing " + path);
+  close_checked(f, path);  // a full disk shows at the flush
 }
 
 std::string kfgins_noise_yaml(const std::vector<ChannelResult>& results) {

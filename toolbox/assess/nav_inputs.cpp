@@ -210,20 +210,34 @@ NavInputs load_nav_inputs(const NavInputArgs& a) {
     check_axes(a.csv_axes);
     TaggedImuCsvReport rep;
     in.imu = read_tagged_imu_csv(imu_path, a.imu_tag.empty() ? imu_path + ".tag" : a.imu_tag, {}, &rep);
+    in.file_counts.push_back({"IMU", imu_path, rep.samples, rep.dropped});
+    in.imu_gaps = rep.long_gaps;
     calibrate();  // in the device axes, as `ldv calib static` saw them
     for (ImuIncrement& s : in.imu) {
       s.dtheta_b_rad = remap(s.dtheta_b_rad, a.csv_axes);
       s.dvel_b_mps = remap(s.dvel_b_mps, a.csv_axes);
     }
-    char note[256];
-    std::snprintf(note, sizeof note, "%ld malformed lines and %ld repeated counters skipped; counter rate from %s",
-                  rep.skipped_lines, rep.skipped_counter, rep.rate_source.c_str());
-    in.imu_note = note;
+    in.imu_note = std::to_string(rep.skipped_lines) + " malformed lines and " + std::to_string(rep.skipped_counter) +
+                  " bad counters skipped, " + std::to_string(rep.gaps) + " gaps; counter rate from " + rep.rate_source +
+                  "; tag positions count line ends " + rep.line_ends;
+    if (rep.counter_wraps > 0)
+      in.imu_note += "; " + std::to_string(rep.counter_wraps) + " counter wraps at " + std::to_string(rep.counter_bits) +
+                     " bits unwrapped";
   } else {
     ImuReadReport rep;
-    in.imu = read_kfgins_imu(imu_path, &rep);
+    ImuReadOptions ro;
+    if (!a.config.empty()) {  // the configuration declares the layout (KF-GINS imudatalen, imudatarate)
+      ro.columns = in.config.imu_data_columns;
+      ro.rate_hz = in.config.imu_rate_hz;
+      ro.declared_by = "imudatalen in " + a.config;
+    } else {
+      ro.declared_by = "the KF-GINS layout; a config's imudatalen";
+    }
+    in.imu = read_kfgins_imu(imu_path, &rep, ro);
+    in.file_counts.push_back({"IMU", imu_path, rep.rows, rep.dropped});
+    in.imu_gaps = rep.long_gaps;
     calibrate();
-    in.imu_note = std::to_string(rep.skipped_duplicates) + " duplicates skipped, " + std::to_string(rep.gaps) + " gaps";
+    in.imu_note = std::to_string(rep.dropped.total()) + " records dropped, " + std::to_string(rep.gaps) + " gaps";
   }
   if (cal) {
     in.imu_note += "; calibration " + cal_path + " applied";
@@ -247,15 +261,83 @@ NavInputs load_nav_inputs(const NavInputArgs& a) {
       if (f.quality != GnssQuality::kFixed && float_std_min_m > 0) f.pos_std_ned_m = f.pos_std_ned_m.cwiseMax(float_std_min_m);
       in.gnss.push_back(f);
     }
+    DroppedRecords pos_dropped;  // the reader's malformed lines by reason, then the ordering's repeats
+    for (const auto& [why, count] : rep.malformed_by_reason)
+      for (long k = 0; k < count; ++k) pos_dropped.add(DropReason::kMalformed, gnss_path, 0, why);
+    for (long k = 0; k < order.repeated; ++k) pos_dropped.add(DropReason::kRepeated, gnss_path, 0, "repeated epoch");
+    in.file_counts.push_back({"GNSS", gnss_path, static_cast<long>(in.gnss.size()), pos_dropped});
     in.gnss_note = rep.summary() + "; " + std::to_string(order.repeated) + " repeated epochs dropped, " +
                    std::to_string(order.out_of_order) + " out of file order";
   } else {
-    in.gnss = read_kfgins_gnss(gnss_path);
+    GnssReadReport rep;
+    in.gnss = read_kfgins_gnss(gnss_path, &rep);
+    in.file_counts.push_back({"GNSS", gnss_path, rep.rows, rep.dropped});
   }
   in.description += " + " + gnss_path;
   estimate_and_remove_imu_latency(a, imu_time_shift_s != 0.0, in);
   decide_gnss_velocity_use(a, in);
+  if (a.strict) {
+    const std::vector<std::string> w = input_warnings(in);
+    if (!w.empty()) {
+      std::string all;
+      for (const auto& x : w) all += "\n  " + x;
+      throw InputError("--strict", 0, "the inputs are not clean:" + all);
+    }
+  }
   return in;
+}
+
+std::vector<std::string> input_count_lines(const NavInputs& in) {
+  std::vector<std::string> out;
+  for (const InputFileCounts& c : in.file_counts) {
+    char pct[32];
+    std::snprintf(pct, sizeof pct, "%.2f %%", 100.0 * c.dropped_fraction());
+    out.push_back(c.role + " " + c.path + ": " + std::to_string(c.kept) + " records kept, " +
+                  std::to_string(c.dropped.total()) + " dropped (" + pct + ")" +
+                  (c.dropped.total() ? ": " + c.dropped.describe() : std::string()));
+  }
+  return out;
+}
+
+std::vector<std::string> input_warnings(const NavInputs& in) {
+  std::vector<std::string> out;
+  for (const InputFileCounts& c : in.file_counts) {
+    if (c.dropped_fraction() <= kMaxDroppedFraction) continue;
+    char msg[160];
+    std::snprintf(msg, sizeof msg, "%s file dropped %.1f %% of its records (more than %.0f %%): ", c.role.c_str(),
+                  100.0 * c.dropped_fraction(), 100.0 * kMaxDroppedFraction);
+    out.push_back(msg + c.path + ": " + c.dropped.describe());
+  }
+  long long_gaps = 0;
+  const ImuTimeGap* longest = nullptr;
+  for (const ImuTimeGap& g : in.imu_gaps) {
+    if (g.length_s() <= kMaxImuGap_s) continue;
+    ++long_gaps;
+    if (!longest || g.length_s() > longest->length_s()) longest = &g;
+  }
+  if (longest) {
+    char msg[200];
+    std::snprintf(msg, sizeof msg, "IMU has %ld gaps longer than %g s; the longest %.3f s from %.3f to %.3f s (line %ld)",
+                  long_gaps, kMaxImuGap_s, longest->length_s(), longest->t_before_s, longest->t_after_s, longest->line);
+    out.push_back(msg);
+  }
+  // GNSS that does not cover the IMU's time (wrong week, another day's file, a time-base mix-up) would
+  // give a pure-inertial run that looks like a navigation result.
+  if (!in.imu.empty() && !in.gnss.empty()) {
+    const double imu_t0 = in.imu.front().t_s, imu_t1 = in.imu.back().t_s;
+    long inside = 0;
+    for (const GnssFix& f : in.gnss) inside += f.t_s >= imu_t0 && f.t_s <= imu_t1;
+    const double covered = static_cast<double>(inside) / static_cast<double>(in.gnss.size());
+    if (covered < 0.5) {
+      char msg[240];
+      std::snprintf(msg, sizeof msg,
+                    "only %ld of %zu GNSS fixes (%.0f %%) fall within the IMU's time span %.3f - %.3f s (GNSS %.3f - %.3f s): "
+                    "check the GPS week and time base of both files",
+                    inside, in.gnss.size(), 100.0 * covered, imu_t0, imu_t1, in.gnss.front().t_s, in.gnss.back().t_s);
+      out.push_back(msg);
+    }
+  }
+  return out;
 }
 
 }  // namespace ldv::assess

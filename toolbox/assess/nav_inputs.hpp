@@ -23,6 +23,7 @@
 #include "common/formats/kfgins_config.hpp"
 #include "common/formats/nav_types.hpp"
 #include "estimator/calibrate/imu_latency.hpp"
+#include "common/io/dropped_records.hpp"
 #include "estimator/options.hpp"
 
 namespace ldv::assess {
@@ -47,7 +48,25 @@ struct NavInputArgs {
   // kUnset: take the configuration's ldv: value (default 0).
   double pos_height_offset_m = kUnset, float_std_min_m = kUnset, imu_time_shift_s = kUnset;
   static constexpr double kUnset = -1e300;
+  // --strict: an input file that loses more than kMaxDroppedFraction of its records (or an IMU with a gap
+  // longer than kMaxImuGap_s) is an error (InputError) instead of a warning.
+  bool strict = false;
 };
+
+// What the readers kept and dropped of one input file (printed by `ldv nav`).
+struct InputFileCounts {
+  std::string role;  // "IMU" or "GNSS"
+  std::string path;
+  long kept = 0;
+  DroppedRecords dropped;
+  double dropped_fraction() const {
+    const long n = kept + dropped.total();
+    return n > 0 ? static_cast<double>(dropped.total()) / static_cast<double>(n) : 0.0;
+  }
+};
+
+constexpr double kMaxDroppedFraction = 0.02;  // more is worth a warning (and an error with --strict)
+constexpr double kMaxImuGap_s = 1.0;          // an IMU hole longer than this is worth a warning
 
 struct NavInputs {
   KfGinsConfig config;
@@ -64,7 +83,14 @@ struct NavInputs {
   bool imu_latency_applied = false;
   // What was decided about the GNSS velocities (estimator/calibrate/gnss_velocity_check.hpp), "" if none.
   std::string gnss_velocity_note;
+  std::vector<InputFileCounts> file_counts;  // IMU then GNSS
+  std::vector<ImuTimeGap> imu_gaps;          // IMU intervals > 10 median intervals (kept: the estimator decides)
 };
+
+// One line per input file ("IMU imu.txt: 1000 kept, 3 dropped: 3 wrong column count (first: ...)").
+std::vector<std::string> input_count_lines(const NavInputs& in);
+// Warnings: a file that dropped more than kMaxDroppedFraction of its records, IMU gaps longer than kMaxImuGap_s.
+std::vector<std::string> input_warnings(const NavInputs& in);
 
 // The configuration and the filter options with the command line's model changes, no data read (the
 // config's output path defaults to "." without a config). Throws InputError naming what is wrong.

@@ -13,8 +13,12 @@ NavSeries::NavSeries(std::vector<NavSample> samples) : samples_(std::move(sample
 NavSeries NavSeries::from_records(const std::vector<NavRecord>& records) {
   std::vector<NavSample> s;
   s.reserve(records.size());
-  for (const NavRecord& r : records) s.push_back({r.sow_s, r.pos, r.vel_n_mps, quat_from_euler(r.rpy_rad)});
-  return NavSeries(std::move(s));
+  const int week0 = records.empty() ? 0 : records.front().week;
+  for (const NavRecord& r : records)
+    s.push_back({(r.week - week0) * kSecondsPerWeek + r.sow_s, r.pos, r.vel_n_mps, quat_from_euler(r.rpy_rad)});
+  NavSeries series(std::move(s));
+  series.week_ = records.empty() ? -1 : week0;
+  return series;
 }
 
 std::optional<NavSample> NavSeries::at(double t_s, double max_gap_s) const {

@@ -1,6 +1,7 @@
 #pragma once
 // A navigation solution as a time series that can be read at any instant: what `ldv compare` matches
 // and what outage drifts are measured against (truth.nav, an uncut solution, a KF-GINS .nav).
+#include <cmath>
 #include <optional>
 #include <vector>
 
@@ -9,7 +10,7 @@
 namespace ldv::assess {
 
 struct NavSample {
-  double t_s = 0.0;  // GPS seconds of week
+  double t_s = 0.0;  // GPS seconds of week (of NavSeries::week(); beyond 604800 s after a week rollover)
   Geodetic pos;
   Vec3 vel_n_mps = Vec3::Zero();
   Quat q_b_n = Quat::Identity();
@@ -19,7 +20,11 @@ class NavSeries {
  public:
   NavSeries() = default;
   explicit NavSeries(std::vector<NavSample> samples);  // sorted by time (throws std::invalid_argument if not)
+  // Times continue across a week rollover: t_s = (week - first week) * 604800 + sow, week() = the first week.
   static NavSeries from_records(const std::vector<NavRecord>& records);
+  int week() const { return week_; }  // GPS week of t_s = 0 (-1: not known, e.g. built from samples)
+  int last_week() const { return week_ < 0 ? -1 : week_ + static_cast<int>(std::floor(t_end_s() / kSecondsPerWeek)); }
+  static constexpr double kSecondsPerWeek = 604800.0;
 
   bool empty() const { return samples_.empty(); }
   size_t size() const { return samples_.size(); }
@@ -33,6 +38,7 @@ class NavSeries {
 
  private:
   std::vector<NavSample> samples_;
+  int week_ = -1;
 };
 
 }  // namespace ldv::assess

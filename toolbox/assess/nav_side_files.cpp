@@ -1,6 +1,5 @@
 #include "toolbox/assess/nav_side_files.hpp"
 
-#include <fstream>
 
 #include "common/io/input_error.hpp"
 #include "common/io/text_table.hpp"
@@ -31,12 +30,12 @@ std::vector<StdRow> read_std_file(const std::string& path) {
 }
 
 std::vector<InnovationRow> read_innovations_file(const std::string& path) {
-  std::ifstream f(path);
-  if (!f) throw InputError(path, 0, "cannot open file");
+  TextFileLines f(path);  // bounded line length; refuses devices and directories
   std::vector<InnovationRow> rows;
   std::vector<std::string_view> fields;
-  std::string line;
-  for (long n = 1; std::getline(f, line); ++n) {
+  std::string_view line;
+  while (f.next(line)) {
+    const long n = f.line_number();
     if (line.empty() || line[0] == '#') continue;
     split_fields(line, fields);
     if (fields.size() != 10) throw InputError(path, n, "expected 10 columns: t kind innov x3 sqrtS x3 nis accepted");

@@ -23,10 +23,13 @@ ComparisonResult compare_solutions(const NavSeries& a, const NavSeries& b, const
   ComparisonResult r;
   if (a.empty() || b.empty()) throw std::invalid_argument("compare: an empty solution");
   const double t_settled = a.t_begin_s() + o.settle_s;
+  // Matched on GPS time (week and seconds of week) when both know their week: A's t_s in B's time base.
+  const bool weeks_known = a.week() >= 0 && b.week() >= 0;
+  const double a_to_b_s = weeks_known ? (a.week() - b.week()) * NavSeries::kSecondsPerWeek : 0.0;
   std::array<double, kComponents> sum{}, sum2{};
   for (const NavSample& s : a.samples()) {
     if (s.t_s < t_settled) continue;
-    const auto ref = b.at(s.t_s, o.max_gap_s);
+    const auto ref = b.at(s.t_s + a_to_b_s, o.max_gap_s);
     if (!ref) {
       ++r.unmatched;
       continue;
@@ -41,6 +44,11 @@ ComparisonResult compare_solutions(const NavSeries& a, const NavSeries& b, const
     r.t_last_s = s.t_s;
     ++r.epochs;
   }
+  if (r.epochs == 0 && weeks_known && (a.week() != b.week() || a.last_week() != b.last_week()))
+    throw std::invalid_argument("compare: the two solutions share no GPS time: the first spans weeks " +
+                                std::to_string(a.week()) + ".." + std::to_string(a.last_week()) + ", the second " +
+                                std::to_string(b.week()) + ".." + std::to_string(b.last_week()) +
+                                " (a .nav written without a known week has week 0: rerun ldv nav with --week)");
   if (r.epochs == 0) throw std::invalid_argument("compare: the two solutions share no epoch after the settling time");
   for (int i = 0; i < kComponents; ++i) {
     ComponentStats& st = r.stats[i];

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "common/io/input_error.hpp"
+#include "common/io/output_file.hpp"
 #include "common/logging.hpp"
 
 namespace ldv::calib {
@@ -228,6 +229,7 @@ void write_json(const std::string& path, const StaticCalibrationResult& r, const
     << ",\n \"gyro_method_used\": " << Json::str(to_string(r.gyro_method_used))
     << ",\n \"calibration\": {\"accel\": " << json_triad(r.calibration.accel, "mps2")
     << ", \"gyro\": " << json_triad(r.calibration.gyro, "rad_s") << "}}\n";
+  close_checked(f, path);
 }
 
 std::vector<std::string> write_sweep_plots(const std::string& prefix, const StaticCalibrationResult& r) {

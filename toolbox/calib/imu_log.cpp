@@ -3,7 +3,6 @@
 #include <cmath>
 #include <algorithm>
 #include <charconv>
-#include <fstream>
 
 #include "common/formats/kfgins_files.hpp"
 #include "common/io/input_error.hpp"
@@ -84,8 +83,7 @@ ImuLog read_xyz_pair(const std::string& accel_path, const std::string& gyro_path
 }
 
 ImuLog read_csv_log(const std::string& path, const ImuLogOptions& opt) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, 0, "cannot open file for reading");
+  TextFileLines in(path);  // bounded line length; refuses devices and directories
   ImuLog log;
   log.source = path;
   std::optional<double> header_rate;
@@ -113,8 +111,10 @@ ImuLog read_csv_log(const std::string& path, const ImuLogOptions& opt) {
     auto [p, ec] = std::from_chars(b, f.data() + f.size(), v);
     return ec == std::errc() && p == f.data() + f.size();
   };
-  while (std::getline(in, line)) {
-    ++line_no;
+  std::string_view text;
+  while (in.next(text)) {
+    line.assign(text);
+    line_no = in.line_number();
     split_fields(line, fields);
     if (fields.empty() || fields[0][0] == '#' || fields[0][0] == '%') continue;
     if (!in_data && !is_number(fields[0])) {

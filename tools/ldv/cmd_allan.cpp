@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "common/io/input_error.hpp"
+#include "common/io/output_file.hpp"
 #include "common/logging.hpp"
 #include "tools/ldv/cli_checks.hpp"
 #include "tools/ldv/command_registry.hpp"
@@ -99,7 +100,10 @@ void run_allan(const AllanArgs& a) {
   const std::string yaml = kfgins_noise_yaml(results);
   if (!yaml.empty()) std::printf("\n%s", yaml.c_str());
   if (!a.noise_config.empty()) {
-    std::ofstream(a.noise_config) << yaml;
+    std::ofstream out(a.noise_config);
+    if (!out) throw ldv::InputError(a.noise_config, 0, "cannot open file for writing");
+    out << yaml;
+    ldv::close_checked(out, a.noise_config);
     spdlog::info("allan: wrote {}", a.noise_config);
   }
   if (!a.json.empty()) {

@@ -18,6 +18,8 @@
 #include "common/formats/kfgins_config.hpp"
 #include "common/formats/kfgins_files.hpp"
 #include "common/io/input_error.hpp"
+#include "common/io/output_file.hpp"
+#include "common/logging.hpp"
 #include "common/io/text_table.hpp"
 #include "estimator/run/alignment_options_from.hpp"
 #include "estimator/run/run_navigation.hpp"
@@ -42,17 +44,24 @@ struct NavArgs {
   bool quiet = false, print_options = false, host_clock_imu = false;
 };
 
-// Writes columns with fixed decimals fast (the std and innovation files), in 256 KiB blocks.
+// Writes columns with fixed decimals fast (the std and innovation files), in 256 KiB blocks; write errors
+// raise InputError (at a block or at close()).
 class TextOut {
  public:
-  TextOut(const std::string& path, const std::string& header) : f_(std::fopen(path.c_str(), "wb")), path_(path) {
-    if (!f_) throw InputError(path, 0, "cannot open file for writing");
+  TextOut(const std::string& path, const std::string& header) : f_(path) {
     buf_.resize(1 << 18);
-    std::fputs(header.c_str(), f_);
+    f_.write(header);
   }
   ~TextOut() {
+    try {
+      flush();
+    } catch (const std::exception& e) {
+      spdlog::error("{}", e.what());
+    }
+  }
+  void close() {
     flush();
-    std::fclose(f_);
+    f_.close();
   }
   void num(double v, int decimals) {
     if (n_ > line_start_) buf_[n_++] = ' ';
@@ -70,11 +79,11 @@ class TextOut {
 
  private:
   void flush() {
-    if (n_ > 0) std::fwrite(buf_.data(), 1, n_, f_);
+    const size_t n = n_;
     n_ = line_start_ = 0;
+    f_.write(buf_.data(), n);
   }
-  std::FILE* f_;
-  std::string path_;
+  OutputFile f_;
   std::vector<char> buf_;
   size_t n_ = 0, line_start_ = 0;
 };
@@ -125,6 +134,12 @@ class NavOutputs {
     innov_.num(r.nis, 3);
     innov_.num(r.accepted ? 1 : 0, 0);
     innov_.end_line();
+  }
+
+  void close() {  // a full disk is an error here, not a truncated file and exit 0
+    nav_.close();
+    std_.close();
+    innov_.close();
   }
 
   static std::string base(const std::string& nav_path) {
@@ -215,6 +230,7 @@ void run_lcm_log(const NavArgs& a, const KfGinsConfig& cfg, est::FilterOptions o
   if (!out) throw InputError(a.lcm_log, 0, "no navigation output: the log never allowed an alignment (" +
                                                std::to_string(sum.imu_messages) + " IMU and " +
                                                std::to_string(sum.gnss_messages) + " GNSS messages)");
+  out->close();
   out.reset();
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
   if (!a.quiet) {
@@ -267,8 +283,10 @@ void run_nav(const NavArgs& a) {
     std::fprintf(stderr, "ldv nav: %zu IMU samples (%s), %zu GNSS fixes%s\n", in.imu.size(), in.imu_note.c_str(),
                  in.gnss.size(), gnss_note.c_str());
     if (!in.gnss_velocity_note.empty()) std::fprintf(stderr, "ldv nav: %s\n", in.gnss_velocity_note.c_str());
+    for (const std::string& line : assess::input_count_lines(in)) std::fprintf(stderr, "  %s\n", line.c_str());
     std::fprintf(stderr, "state layout (%d states):\n%s", filter->layout().size(), filter->layout().describe().c_str());
   }
+  for (const std::string& w : assess::input_warnings(in)) std::fprintf(stderr, "ldv nav: WARNING: %s\n", w.c_str());
 
   NavOutputs out(nav_path, *filter, a.std_rate_hz);
   est::RunCallbacks cb;
@@ -279,6 +297,7 @@ void run_nav(const NavArgs& a) {
     cb.on_progress = [](double done) { std::fprintf(stderr, "\rldv nav: %3.0f %%", done * 100.0); };
 
   const est::RunSummary sum = est::run_navigation(in.imu, in.gnss, in.config, *filter, cb, &ao);
+  out.close();
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
   if (show_progress) std::fprintf(stderr, "\r");
   if (!a.quiet)

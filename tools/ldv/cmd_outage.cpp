@@ -7,6 +7,7 @@
 
 #include "common/formats/kfgins_files.hpp"
 #include "common/io/input_error.hpp"
+#include "common/io/output_file.hpp"
 #include "toolbox/assess/nav_inputs.hpp"
 #include "toolbox/assess/outage_run.hpp"
 #include "toolbox/assess/outage_table.hpp"
@@ -43,6 +44,7 @@ void run_outage(OutageArgs& a) {
     std::ofstream f(a.json);
     if (!f) throw InputError(a.json, 0, "cannot open file for writing");
     f << assess::outage_json(run, summary);
+    ldv::close_checked(f, a.json);
   }
 }
 

@@ -40,6 +40,9 @@ inline void add_nav_input_options(CLI::App* c, assess::NavInputArgs& in, bool co
   c->add_flag("--kfgins-compatible", in.kfgins_compatible,
               "KF-GINS's measurement gate (reject beyond it, force after 10 rejections) instead of the robust update "
               "(default ldv.kfgins_compatible, else off)");
+  c->add_flag("--strict", in.strict,
+              "refuse inputs that drop more than 2 % of a file's records or hold an IMU gap over 1 s (default: a "
+              "warning)");
 }
 
 }  // namespace ldv::cli

@@ -1,0 +1,284 @@
+// Issue 13 (file readers and writers): each defect reproduced and its fix checked, against values computed
+// here independently of the readers.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+
+#include "common/formats/kfgins_config.hpp"
+#include "common/formats/kfgins_files.hpp"
+#include "common/formats/tagged_imu_csv.hpp"
+#include "common/io/atomic_file.hpp"
+#include "common/io/input_error.hpp"
+#include "common/io/output_file.hpp"
+#include "common/io/text_table.hpp"
+#include "common/time/gps_time.hpp"
+
+using namespace ldv;
+namespace fs = std::filesystem;
+
+namespace {
+std::string temp_path(const std::string& name) { return (fs::temp_directory_path() / ("ldv_hard_" + name)).string(); }
+std::string write_temp(const std::string& name, const std::string& text) {
+  const std::string p = temp_path(name);
+  std::ofstream(p, std::ios::binary) << text;
+  return p;
+}
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+std::string imu_line(double t_s, int columns = 7) {
+  std::string s = std::to_string(t_s);
+  for (int c = 1; c < columns; ++c) s += " 0.001";
+  return s + "\n";
+}
+std::string imu_file(int n, double t0 = 100.0, double dt = 0.01) {
+  std::string s;
+  for (int i = 0; i < n; ++i) s += imu_line(t0 + dt * i);
+  return s;
+}
+}  // namespace
+
+// Defect 1: format_fixed wrote stale buffer bytes for |value| beyond ~1e57.
+TEST(FormatFixed, HugeAndNonFiniteValuesAreWrittenAsDefinedText) {
+  for (double v : {1e57, -1e58, 1e300, -1.7976931348623157e308, 123456789012345678901.0, 1e21}) {
+    char buf[kFormatFixedMaxChars + 16];
+    std::memset(buf, 'X', sizeof buf);
+    const int n = format_fixed(buf, v, 6);
+    ASSERT_GT(n, 0);
+    ASSERT_LE(n, kFormatFixedMaxChars);
+    const std::string text(buf, static_cast<size_t>(n));
+    EXPECT_EQ(text.find('X'), std::string::npos) << text;
+    EXPECT_EQ(std::strtod(text.c_str(), nullptr), v) << text;  // parses back exactly
+  }
+  char buf[kFormatFixedMaxChars];
+  EXPECT_EQ(std::string(buf, format_fixed(buf, std::nan(""), 6)), "nan");
+  EXPECT_EQ(std::string(buf, format_fixed(buf, -INFINITY, 6)), "-inf");
+  EXPECT_EQ(std::string(buf, format_fixed(buf, 12.5, 3)), "12.500");  // the fast path unchanged
+}
+
+TEST(NavWriter, AnAbsurdHeightIsWrittenAsANumberAndNanIsRefusedKeepingEarlierRows) {
+  const std::string p = temp_path("absurd.nav");
+  NavRecord r;
+  r.week = 2380;
+  r.sow_s = 1000.0;
+  r.pos = {0.5, 1.0, 10.0};
+  {
+    NavWriter w(p);
+    w.write(r);
+    r.sow_s += 1;
+    r.pos.h_m = -4.6e15 * 1e50;  // a diverged filter
+    w.write(r);
+    w.close();
+  }
+  const auto back = read_nav(p);
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_EQ(back[1].pos.h_m, -4.6e65);
+  EXPECT_EQ(back[1].week, 2380);
+
+  NavWriter w(p);
+  r.pos.h_m = 1.0;
+  w.write(r);
+  r.sow_s = 1234.5;
+  r.vel_n_mps.y() = std::nan("");
+  const std::string e = error_of([&] { w.write(r); });
+  EXPECT_NE(e.find(p + ":2: cannot write a non-finite vE"), std::string::npos) << e;
+  EXPECT_NE(e.find("week 2380, 1234.500000 s"), std::string::npos) << e;
+  w.close();
+  EXPECT_EQ(read_nav(p).size(), 1u);  // the row before it is kept
+}
+
+// Defect 2: no line length limit, devices read forever.
+TEST(BoundedLines, DevicesAndEndlessLinesEndInAClearError) {
+  const auto t0 = std::chrono::steady_clock::now();
+  EXPECT_NE(error_of([] { read_kfgins_imu("/dev/zero"); }).find("/dev/zero: is a character device"), std::string::npos);
+  EXPECT_NE(error_of([] { read_kfgins_gnss("/dev/zero"); }).find("character device"), std::string::npos);
+  EXPECT_NE(error_of([] { load_kfgins_config("/dev/zero"); }).find("character device"), std::string::npos);
+  EXPECT_NE(error_of([] { read_nav(fs::temp_directory_path().string()); }).find("is a directory"), std::string::npos);
+  const std::string tag = write_temp("any.tag", std::string("TIMETAG RTKLIB EX") + std::string(60 - 17 + 16 + 8, '\0'));
+  EXPECT_NE(error_of([&] { read_tagged_imu_csv("/dev/zero", tag); }).find("/dev/zero"), std::string::npos);
+  // A regular file with one endless line: refused at the limit, naming file and line.
+  const std::string p = write_temp("long_line.txt", imu_file(2) + std::string(200000, '1') + "\n");
+  EXPECT_NE(error_of([&] { read_kfgins_imu(p); }).find("long_line.txt:3: line longer than 65536 bytes"),
+            std::string::npos);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5.0);
+}
+
+// Defect 3: the IMU reader took 7 to 64 columns whatever imudatalen said.
+TEST(KfGinsImuColumns, ALineWithAnotherColumnCountIsDroppedCountedAndNamed) {
+  std::string text = imu_file(100);
+  // One corrupted byte: '.' -> ' ' turns "100.500000" into two columns, the row shifts by one.
+  const size_t at = text.find("100.500000");
+  text[at + 3] = ' ';
+  const std::string p = write_temp("imu_shift.txt", text);
+  ImuReadReport rep;
+  const auto imu = read_kfgins_imu(p, &rep);
+  EXPECT_EQ(imu.size(), 99u);
+  EXPECT_EQ(rep.dropped[DropReason::kWrongColumns], 1);
+  EXPECT_NE(rep.dropped.describe().find("imu_shift.txt:51: expected 7 columns"), std::string::npos)
+      << rep.dropped.describe();
+  // The declared count is enforced: an 8-column file with imudatalen 7 is refused, with 8 it is read.
+  std::string eight;
+  for (int i = 0; i < 50; ++i) eight += imu_line(100 + 0.01 * i, 8);
+  const std::string p8 = write_temp("imu8.txt", eight);
+  EXPECT_NE(error_of([&] { read_kfgins_imu(p8); }).find("50 of 50 data lines dropped"), std::string::npos);
+  ImuReadOptions o;
+  o.columns = 8;
+  EXPECT_EQ(read_kfgins_imu(p8, nullptr, o).size(), 50u);
+}
+
+TEST(KfGinsGnssColumns, TheFirstDataLineDecidesSevenOrThirteen) {
+  std::string text;
+  for (int i = 0; i < 30; ++i)
+    text += std::to_string(100 + i) + " 30.1 114.2 20.0 0.01 0.02 0.03" + (i == 7 ? " 1 2 3 0.1 0.2 0.3\n" : "\n");
+  const std::string p = write_temp("gnss_mixed.txt", text);
+  GnssReadReport rep;
+  const auto g = read_kfgins_gnss(p, &rep);
+  EXPECT_EQ(g.size(), 29u);
+  EXPECT_EQ(rep.columns, 7);
+  EXPECT_EQ(rep.dropped[DropReason::kWrongColumns], 1);
+  EXPECT_NE(rep.dropped.first[static_cast<int>(DropReason::kWrongColumns)].find("gnss_mixed.txt:8:"),
+            std::string::npos);
+}
+
+// Defect 4: a 1e6 s hole was integrated as one increment and reported as "gaps 0".
+TEST(KfGinsImuTime, HolesBackwardsRepeatsAndJumpsAreCountedByReason) {
+  std::string text = imu_file(50);                            // 100.00 .. 100.49
+  text += imu_file(50, 100.0 + 1e6);                          // a 1e6 s hole
+  text.insert(text.find(imu_line(100.2)), imu_line(100.1));   // backwards (line 21)
+  text.insert(text.find(imu_line(100.3)), imu_line(100.29));  // repeated (line 32: 100.29 twice)
+  text.insert(text.find(imu_line(100.4)), imu_line(900.0));   // one corrupted time stamp, ahead of both neighbours
+  const std::string p = write_temp("imu_time.txt", text);
+  ImuReadReport rep;
+  const auto imu = read_kfgins_imu(p, &rep);
+  EXPECT_EQ(imu.size(), 100u);
+  EXPECT_EQ(rep.dropped[DropReason::kTimeBackwards], 1);
+  EXPECT_EQ(rep.dropped[DropReason::kRepeated], 1);
+  EXPECT_EQ(rep.dropped[DropReason::kTimeJump], 1);
+  ASSERT_EQ(rep.long_gaps.size(), 1u);
+  EXPECT_NEAR(rep.long_gaps[0].length_s(), 1e6 - 0.49, 1e-3);
+  EXPECT_NEAR(rep.long_gaps[0].t_before_s, 100.49, 1e-9);
+  EXPECT_EQ(rep.long_gaps[0].line, 54);  // 50 + the three inserted lines + 1
+  EXPECT_GE(rep.gaps, 1);
+  for (size_t i = 1; i < imu.size(); ++i) ASSERT_GT(imu[i].t_s, imu[i - 1].t_s);
+}
+
+// Defect 5: tagged CSV counters. Builds a CSV and a tag file whose positions count the bytes as written here.
+namespace {
+struct TaggedFiles {
+  std::string csv, tag;
+};
+void put_u32(std::string& s, uint32_t v) { s.append(reinterpret_cast<const char*>(&v), 4); }
+// Samples every 10 counter ticks (ms) received at 100 Hz host time; positions counted with `tag_crlf` line ends,
+// the CSV stored with `file_crlf` ones.
+TaggedFiles tagged(const std::string& name, const std::vector<std::string>& counters, bool file_crlf, bool tag_crlf) {
+  std::string csv, tag = "TIMETAG RTKLIB EX";
+  tag.resize(60, '\0');
+  put_u32(tag, 0);
+  put_u32(tag, static_cast<uint32_t>(kGpsEpochInUnixSeconds + 1400000000.0));
+  const double fraction = 0.0;
+  tag.append(reinterpret_cast<const char*>(&fraction), 8);
+  uint64_t counted = 0;
+  for (size_t i = 0; i < counters.size(); ++i) {
+    const std::string body = "0.0,0.0,1.0,0.0,0.0,0.0," + counters[i];
+    csv += body + (file_crlf ? "\r\n" : "\n");
+    counted += body.size() + (tag_crlf ? 2 : 1);
+    put_u32(tag, static_cast<uint32_t>(10 * i + 3));   // tick of reception [ms]: 3 ms latency
+    put_u32(tag, static_cast<uint32_t>(counted - 1));  // the line's '\n' arrived at that tick
+  }
+  return {write_temp(name + ".csv", csv), write_temp(name + ".csv.tag", tag)};
+}
+std::vector<std::string> counters_from(uint64_t first, int n, uint64_t modulo = 0) {
+  std::vector<std::string> c;
+  for (int i = 0; i < n; ++i) {
+    const uint64_t v = first + 10 * static_cast<uint64_t>(i);
+    c.push_back(std::to_string(modulo ? v % modulo : v));
+  }
+  return c;
+}
+}  // namespace
+
+TEST(TaggedCsvCounters, HugeCountersEndAndAbsurdOnesAreRefusedWithTheirLine) {
+  auto c = counters_from(18446744073709000000ull, 200);  // close to 2^64: the fit once looped forever
+  c[100] = "45000000000000000000";                       // beyond 2^64
+  const TaggedFiles f = tagged("huge", c, false, false);
+  TaggedImuCsvReport rep;
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto imu = read_tagged_imu_csv(f.csv, f.tag, {}, &rep);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 2.0);
+  EXPECT_EQ(rep.samples, 199);
+  EXPECT_EQ(rep.dropped[DropReason::kOutOfRange], 1);
+  EXPECT_NE(rep.dropped.describe().find("huge.csv:101: column 7"), std::string::npos) << rep.dropped.describe();
+  for (size_t i = 1; i < imu.size(); ++i) {
+    const double expected = (i == 99 ? 0.02 : 0.01);  // the dropped sample leaves a 20 ms increment
+    ASSERT_NEAR(imu[i].dt_s, expected, 1e-9) << i;
+  }
+}
+
+TEST(TaggedCsvCounters, AThirtyTwoBitWrapIsUnwrapped) {
+  const TaggedFiles f = tagged("wrap", counters_from(4294967296ull - 1000, 300, 4294967296ull), false, false);
+  TaggedImuCsvReport rep;
+  const auto imu = read_tagged_imu_csv(f.csv, f.tag, {}, &rep);
+  EXPECT_EQ(rep.samples, 300);
+  EXPECT_EQ(rep.counter_wraps, 1);
+  EXPECT_EQ(rep.counter_bits, 32);
+  EXPECT_EQ(rep.dropped.total(), 0);
+  for (const auto& s : imu) ASSERT_NEAR(s.dt_s, 0.01, 1e-9);
+  // Declared narrower than the values: refused as out of range.
+  TaggedImuCsvOptions o;
+  o.counter_bits = 16;
+  EXPECT_NE(error_of([&] { read_tagged_imu_csv(f.csv, f.tag, o); }).find("wider than 16 bits"), std::string::npos);
+}
+
+// Issue 12 item 6: tag positions counted with CRLF, the CSV stored with LF (git). Counter and host clock run at the
+// same rate here (10 ms per sample, 10 ms per tag tick), so the fitted host rate must be that of the counter.
+TEST(TaggedCsvLineEnds, PositionsCountedWithCrlfOnAnLfFileAreDetectedAndUsed) {
+  const auto c = counters_from(5000, 3000);
+  for (bool file_crlf : {false, true}) {
+    const TaggedFiles f = tagged(file_crlf ? "crlf_stored" : "lf_stored", c, file_crlf, true);
+    TaggedImuCsvReport rep;
+    read_tagged_imu_csv(f.csv, f.tag, {}, &rep);
+    EXPECT_NEAR(rep.host_rate_error_ppm, 0.0, 50.0) << rep.line_ends;
+    EXPECT_EQ(rep.line_ends.rfind(file_crlf ? "as stored" : "CRLF", 0), 0u) << rep.line_ends;
+    EXPECT_NEAR(rep.min_latency_s, 0.0, 1e-9);
+  }
+  const TaggedFiles lf = tagged("lf_lf", c, false, false);
+  TaggedImuCsvReport rep;
+  read_tagged_imu_csv(lf.csv, lf.tag, {}, &rep);
+  EXPECT_EQ(rep.line_ends, "as stored");
+  EXPECT_NEAR(rep.host_rate_error_ppm, 0.0, 50.0);
+}
+
+// Defect 8: write errors were ignored.
+TEST(WriteErrors, AFullDiskIsAnErrorNamingTheFile) {
+  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  NavRecord r;
+  r.pos = {0.5, 1.0, 10.0};
+  EXPECT_NE(error_of([&] {
+              NavWriter w("/dev/full");
+              w.write(r);
+              w.close();
+            }).find("/dev/full: "),
+            std::string::npos);
+  std::vector<ImuIncrement> imu(10);
+  EXPECT_NE(error_of([&] { write_kfgins_imu("/dev/full", imu); }).find("/dev/full: "), std::string::npos);
+  std::vector<GnssFix> gnss(3);
+  EXPECT_NE(error_of([&] { write_kfgins_gnss("/dev/full", gnss, true); }).find("/dev/full"), std::string::npos);
+  EXPECT_NE(error_of([&] { save_kfgins_config(KfGinsConfig{}, "/dev/full"); }).find("/dev/full"), std::string::npos);
+  EXPECT_NE(error_of([&] {
+              OutputFile f("/dev/full");
+              f.write("x", 1);
+              f.close();
+            }).find("/dev/full"),
+            std::string::npos);
+}
