@@ -5,7 +5,8 @@
 
 namespace ldv {
 
-// False when the directory is not writable (callers carry on: a state file is an optimisation).
+// False when the directory is not writable (callers carry on: a state file is an optimisation), or
+// when PATH exists and is not a regular file (a device, a FIFO, a symbolic link): never replaced.
 bool write_file_atomically(const std::string& path, const std::string& text);
 
 }  // namespace ldv

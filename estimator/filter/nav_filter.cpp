@@ -18,8 +18,6 @@ namespace {
 constexpr double kSnapshotPeriod_s = 0.2;
 constexpr double kHealthPeriod_s = 1.0;
 constexpr double kSplitTolerance_s = 1e-6;
-// A measurement the robust update kept with its noise inflated more than this counts as rejected.
-constexpr double kMaxNoiseScaleUsed = 4.0;
 // Holding the IMU's rates over missing samples is sound for a few samples, not for a hole: beyond this
 // the state coasts at its velocity and the covariance opens by what a land vehicle can do meanwhile.
 constexpr double kMaxBridgedImuGap_s = 1.0;
@@ -491,7 +489,7 @@ void NavFilter::apply_measurement(const Measurement& m) {
     ++faults_.gate_resyncs;
   }
   // Used: within the gate, forced, or kept by the robust update with at least a quarter of its weight.
-  const bool used = ok && rec.noise_scale <= kMaxNoiseScaleUsed;
+  const bool used = rec.used();
   if (ok && beyond_gate) ++faults_.downweighted;
   if (used && m.kind != MeasurementKind::kZeroVelocity) {
     c_.last_gnss_t_s = c_.nav.t_s;

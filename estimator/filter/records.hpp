@@ -20,7 +20,11 @@ struct InnovationRecord {
   // The factor on R the update used: 1 within the gate; > 1 for a measurement beyond it that the robust
   // update kept with less weight (its effective S is H P H^T + noise_scale R).
   double noise_scale = 1.0;
-  bool replayed = false;           // recomputed while re-processing a late measurement
+  bool replayed = false;
+  // A measurement counts as used when applied with at least a quarter of its weight; beyond that the
+  // robust update kept only a trace of it (an outlier), which counts as a gate rejection.
+  static constexpr double kMaxNoiseScaleUsed = 4.0;
+  bool used() const { return accepted && noise_scale <= kMaxNoiseScaleUsed; }           // recomputed while re-processing a late measurement
 };
 
 class FilterObserver {

@@ -140,3 +140,25 @@ TEST(CompareWeeks, SolutionsAreMatchedOnWeekAndSecondsAcrossARollover) {
 }
 
 }  // namespace ldv::assess
+
+namespace ldv::assess {
+
+TEST(InputCounts, GnssThatDoesNotCoverTheImuIsWarnedAndRefusedWithStrict) {
+  // The IMU runs 1000-1010 s; the GNSS file holds another day's fixes (a week-of-seconds mix-up).
+  NavInputArgs a;
+  a.imu = write("imu_clean.txt", imu_rows(1000, 0));
+  std::string far;
+  for (int i = 0; i < 10; ++i) far += std::to_string(90000 + i) + " 30.5 114.3 20.0 0.01 0.01 0.02\n";
+  a.gnss = write("gnss_other_day.txt", far);
+  const NavInputs in = load_nav_inputs(a);
+  const auto w = input_warnings(in);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("0 of 10 GNSS fixes"), std::string::npos) << w[0];
+  a.strict = true;
+  EXPECT_THROW(load_nav_inputs(a), InputError);
+  a.gnss = write("gnss_same_time.txt", gnss_rows(10));
+  a.strict = false;
+  EXPECT_TRUE(input_warnings(load_nav_inputs(a)).empty());
+}
+
+}  // namespace ldv::assess

@@ -3,6 +3,7 @@
 // or handles it correctly and counts it; never a signal, never past its time limit.
 #include <gtest/gtest.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -16,6 +17,7 @@
 #include "common/bus/lcm_log_reader.hpp"
 #include "common/formats/kfgins_files.hpp"
 #include "common/geo/earth_model.hpp"
+#include "common/io/atomic_file.hpp"
 #include "common/io/input_error.hpp"
 #include "common/parallel/parallel_for.hpp"
 #include "estimator/filter/nav_filter.hpp"
@@ -291,6 +293,24 @@ TEST(LcmLogFaults, CorruptLengthsAreSkippedAndEverythingAfterThemIsRead) {
   EXPECT_EQ(ex.exit_code, 0) << ex.output;
   EXPECT_NE(ex.output.find("3 corrupt log events"), std::string::npos) << ex.output;
   EXPECT_THROW(LcmLogReader("/dev/zero"), InputError);
+}
+
+}  // namespace ldv
+
+namespace ldv {
+
+TEST(WriterFaults, AnOutputPathThatIsNotARegularFileIsNeverReplaced) {
+  // `ldv diagnose --write-config /dev/zero` once renamed its temporary file over /dev/zero. A FIFO and a
+  // link stand in for the device here: neither may be replaced, and the command says it cannot write.
+  const fs::path dir = temp_dir("writer");
+  const fs::path fifo = dir / "fifo", link = dir / "link";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0644), 0);
+  fs::create_symlink("/dev/null", link);
+  EXPECT_FALSE(write_file_atomically(fifo.string(), "text"));
+  EXPECT_FALSE(write_file_atomically(link.string(), "text"));
+  EXPECT_TRUE(fs::is_fifo(fs::symlink_status(fifo)));
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(link)));
+  EXPECT_TRUE(write_file_atomically((dir / "plain.txt").string(), "text"));
 }
 
 }  // namespace ldv

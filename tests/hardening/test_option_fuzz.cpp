@@ -42,10 +42,21 @@ std::vector<OptionSpec> options_of(const std::vector<std::string>& command) {
   return out;
 }
 
+const fs::path& work_dir();
+
+std::string zero_link() {
+  const fs::path link = work_dir() / "zero_link";
+  std::error_code ec;
+  if (!fs::is_symlink(link, ec)) fs::create_symlink("/dev/zero", link, ec);
+  return link.string();
+}
+
 std::vector<std::string> hostile_values(const std::string& type) {
   if (type == "FLOAT") return {"nan", "inf", "-inf", "1e308", "-1e308", "0", "-1", "1e-300", "1e999"};
   if (type == "INT" || type == "UINT") return {"-1", "0", "2147483648", "-2147483649", "999999999"};
-  if (type == "TEXT") return {"", "/dev/zero", "/nonexistent/x", std::string(20000, 'a'), "nan", "-"};
+  // /dev/zero through a link of our own: an input that never ends, and, if a writer ever renamed over
+  // its output path again (it once replaced /dev/zero itself), only the link would go.
+  if (type == "TEXT") return {"", zero_link(), "/nonexistent/x", std::string(20000, 'a'), "nan", "-"};
   return {""};
 }
 

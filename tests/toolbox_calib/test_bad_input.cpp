@@ -5,7 +5,7 @@
 
 #include "common/io/input_error.hpp"
 #include "real_data.hpp"
-#include "toolbox/calib/imu_calibration.hpp"
+#include "common/formats/imu_calibration.hpp"
 #include "toolbox/calib/static_calibration.hpp"
 
 namespace ldv::calib {

@@ -49,7 +49,7 @@ void innovation_scale(const ModelCheck& mc, double& long_run_factor, double& eff
 double rejected_fraction(const FilterRun& run) {
   if (run.records.empty()) return 0.0;
   long rejected = 0;
-  for (const auto& r : run.records) rejected += !r.accepted;
+  for (const auto& r : run.records) rejected += !r.used;
   return static_cast<double>(rejected) / run.records.size();
 }
 

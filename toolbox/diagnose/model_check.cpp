@@ -91,7 +91,7 @@ ModelCheck check_model(const FilterRun& run, const std::vector<Segment>& labels,
       nis_sum += r->nis;
       axis_sum += w.back().cwiseAbs2();
       sq += r->innovation.cwiseAbs2();
-      if (!r->accepted) ++sc.rejected;
+      if (!r->used) ++sc.rejected;
     }
     const double n = sc.count;
     sc.rms = (sq / n).cwiseSqrt();
@@ -128,7 +128,7 @@ ModelCheck check_model(const FilterRun& run, const std::vector<Segment>& labels,
       ++seg[s].count;
       seg_nis[s] += r->nis;
       seg_sq[s] += r->innovation.cwiseAbs2();
-      if (!r->accepted) ++seg[s].rejected;
+      if (!r->used) ++seg[s].rejected;
     }
     for (int s = 0; s < kSegmentCount; ++s) {
       if (seg[s].count == 0) continue;

@@ -84,6 +84,28 @@ std::string candidate_json(const CandidateScore& c) {
   return o.str();
 }
 
+// The step-by-step fall (ldv diagnose --iterate): the effect added to reach step i's model (null for the
+// model under test), its estimate and sigma in that model's run (SI), and how the model then fits the
+// GNSS positions.
+std::string step_outcome_json(const Diagnosis& d, size_t i) {
+  std::string added = "null", estimate = "null", sigma = "null";
+  if (i > 0) {
+    const DiagnosisStep& prev = d.steps[i - 1];
+    added = str(prev.added);
+    for (const Confirmation& c : prev.confirmations) {
+      if (c.effect != prev.added) continue;
+      estimate = vec(c.estimate.value_si);
+      sigma = vec(c.estimate.std_si);
+    }
+  }
+  const SensorCheck* pos = d.steps[i].check.find(est::MeasurementKind::kGnssPosition);
+  const int total = pos ? pos->count : 0, accepted = pos ? pos->count - pos->rejected : 0;
+  return "\"added\": " + added + ", \"estimate\": " + estimate + ", \"sigma\": " + sigma +
+         ", \"accepted_fixes\": " + std::to_string(accepted) + ", \"total_fixes\": " + std::to_string(total) +
+         ", \"mean_nis\": " + (pos ? num(pos->mean_nis.value) : std::string("null")) +
+         ", \"consistent\": " + (d.steps[i].check.consistent() ? "true" : "false");
+}
+
 }  // namespace
 
 std::string diagnosis_json(const Diagnosis& d) {
@@ -118,7 +140,8 @@ std::string diagnosis_json(const Diagnosis& d) {
                          ", \"adjusted_gain\": " + num(c.adjusted_gain) + ", \"penalty\": " + num(c.penalty) +
                          ", \"accepted\": " + (c.accepted ? "true" : "false") + "}";
                 }) +
-                ", \"added\": " + (s.added.empty() ? std::string("null") : str(s.added)) + "}";
+                ", \"adds\": " + (s.added.empty() ? std::string("null") : str(s.added)) + ", " + step_outcome_json(d, i) +
+                "}";
        })
     << ",\n";
   o << "  \"model_check\": {\"before\": " << check_json(d.steps.front().check) << ", \"after\": " << check_json(d.check_after)

@@ -74,6 +74,52 @@ void print_truth(std::ostream& out, const char* label, const TruthError& t) {
       << fmt("%.3f", t.max_horizontal_m) << "), yaw RMS " << fmt("%.3f", t.rms_yaw_deg) << " deg\n";
 }
 
+// Why nothing is added, in words that do not claim more than the data showed: "consistent" only when
+// the model check passed and no candidate was significant.
+std::string why_nothing(const Diagnosis& d) {
+  const DiagnosisStep& first = d.steps.front();
+  std::string significant;
+  for (const CandidateScore& c : first.screening.ranked) {
+    if (!c.significant) continue;
+    significant += (significant.empty() ? "" : ", ") + c.name;
+    if (c.group.size() > 1) {
+      significant += " (cannot be told apart here from";
+      for (const auto& g : c.group)
+        if (g != c.name) significant += " " + g;
+      significant += "; to separate: " + c.separate_by + ")";
+    }
+  }
+  if (!significant.empty())
+    return ": significant in the screening but not confirmed by the reruns: " + significant +
+           ". The data do not settle it; the model is NOT shown consistent";
+  if (!first.check.consistent())
+    return ": the model does not fit the measurements (see the model check) and no candidate effect explains it; "
+           "look at the noise model and the untested effects";
+  return " (the model is consistent with the data)";
+}
+
+// The error falling step by step: what each step added, its estimate, and how the model then fits.
+void print_steps(std::ostream& out, const Diagnosis& d) {
+  out << "\n5. Step by step (GNSS position fit of each model)\n"
+      << "  step  added                 estimate +- sigma                          used / fixes  mean NIS  RMS N E D [m]\n";
+  for (size_t i = 0; i < d.steps.size(); ++i) {
+    std::string added = i == 0 ? "(model under test)" : d.steps[i - 1].added, estimate;
+    if (i > 0)
+      for (const Confirmation& c : d.steps[i - 1].confirmations)
+        if (c.effect == added)
+          estimate = "[" + values(c.estimate.value_si, c.estimate.unit.scale) + "] +- [" +
+                     values(c.estimate.std_si, c.estimate.unit.scale) + "] " + c.estimate.unit.unit;
+    const SensorCheck* pos = d.steps[i].check.find(est::MeasurementKind::kGnssPosition);
+    out << "  " << fmt("%4.0f", static_cast<double>(i)) << "  " << added << std::string(added.size() < 22 ? 22 - added.size() : 1, ' ')
+        << estimate << std::string(estimate.size() < 43 ? 43 - estimate.size() : 1, ' ');
+    if (pos)
+      out << fmt("%5.0f", static_cast<double>(pos->count - pos->rejected)) << " / " << fmt("%-5.0f", static_cast<double>(pos->count))
+          << "  " << fmt("%8.2f", pos->mean_nis.value) << "  " << fmt("%.3f", pos->rms(0)) << " " << fmt("%.3f", pos->rms(1))
+          << " " << fmt("%.3f", pos->rms(2));
+    out << "\n";
+  }
+}
+
 }  // namespace
 
 void print_report(std::ostream& out, const Diagnosis& d) {
@@ -102,8 +148,7 @@ void print_report(std::ostream& out, const Diagnosis& d) {
   }
   out << "\n3. Verdict: ";
   if (d.add.empty()) {
-    out << "nothing to add" << (d.steps.front().check.consistent() ? " (the model is consistent with the data)" : "")
-        << "\n";
+    out << "nothing to add" << why_nothing(d) << "\n";
   } else {
     out << "add";
     for (const auto& a : d.add) out << " " << a;
@@ -127,6 +172,7 @@ void print_report(std::ostream& out, const Diagnosis& d) {
     print_truth(out, "before:", d.truth_before);
     if (!d.add.empty()) print_truth(out, "after: ", d.truth_after);
   }
+  print_steps(out, d);
   out << "\n  " << d.filter_runs << " filter runs, " << fmt("%.1f", d.cpu_s) << " s CPU\n";
 }
 

@@ -18,6 +18,7 @@ SensitivityRecord SensitivityRecord::from(const est::InnovationRecord& r) {
   rec.S = r.S;
   rec.nis = r.nis;
   rec.accepted = r.accepted;
+  rec.used = r.used();
   return rec;
 }
 

@@ -22,7 +22,8 @@ struct SensitivityRecord {
   Vec3 innovation = Vec3::Zero();  // z_hat - z
   Mat3 S = Mat3::Identity();
   double nis = 0.0;
-  bool accepted = true;
+  bool accepted = true;  // applied to the state (the robust update may apply an outlier with a trace of weight)
+  bool used = true;      // applied with at least a quarter of its weight (est::InnovationRecord::used)
   Eigen::Matrix<double, 3, Eigen::Dynamic> s;  // d(innovation)/d(e), 3 x P
 
   // The filter's record of a measurement, without sensitivities.

@@ -3,11 +3,14 @@
 //   ldv diagnose --kfgins-config FILE.yaml [--model NAME] [--add EFFECT]... [--drop EFFECT]...
 //                [--json OUT.json] [--truth truth.nav] [--plots DIR]
 // Inputs as `ldv nav` takes them from files (KF-GINS text, tagged IMU CSV, RTKLIB .pos).
+#include <algorithm>
 #include <iostream>
+#include <sstream>
 #include <memory>
 
 #include "common/formats/kfgins_config.hpp"
 #include "common/formats/kfgins_files.hpp"
+#include "common/io/atomic_file.hpp"
 #include "common/io/input_error.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "toolbox/diagnose/diagnosis.hpp"
@@ -22,11 +25,43 @@ using namespace ldv;
 
 struct DiagnoseArgs {
   assess::NavInputArgs inputs;
-  std::string json, truth, plots;
+  std::string json, truth, plots, write_config;
   int max_add = 3;
+  bool iterate = false;
   double alpha = 0.05, bandwidth_s = 120.0;
   bool quiet = false;
 };
+
+constexpr int kMaxIterations = 12;
+
+// The user's configuration with the verdict's effects added to ldv.add, their estimates as comments.
+void write_tuned_config(const std::string& config_path, const diag::Diagnosis& d, const std::string& out_path) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(config_path);
+  } catch (const YAML::Exception& e) {
+    throw InputError(config_path, e.mark.line + 1, std::string("cannot read the configuration: ") + e.what());
+  }
+  std::vector<std::string> add;
+  if (root["ldv"] && root["ldv"]["add"]) add = root["ldv"]["add"].as<std::vector<std::string>>();
+  for (const std::string& e : d.add)
+    if (std::find(add.begin(), add.end(), e) == add.end()) add.push_back(e);
+  root["ldv"]["add"] = add;
+  YAML::Emitter emitter;
+  emitter << root;
+  std::ostringstream text;
+  text << "# Tuned by `ldv diagnose --iterate` from " << config_path << ": " << d.steps.size() - 1
+       << " step(s); added effects and their estimates:\n";
+  for (const diag::EffectEstimate& e : d.added_estimates) {
+    text << "#   " << e.name << " [" << e.unit.unit << "]:";
+    for (int i = 0; i < e.value_si.size(); ++i) text << " " << e.value_si(i) * e.unit.scale;
+    text << "  (1-sigma";
+    for (int i = 0; i < e.std_si.size(); ++i) text << " " << e.std_si(i) * e.unit.scale;
+    text << ")\n";
+  }
+  text << emitter.c_str() << "\n";
+  if (!write_file_atomically(out_path, text.str())) throw InputError(out_path, 0, "cannot write the tuned configuration");
+}
 
 void run_diagnose(const DiagnoseArgs& a) {
   assess::NavInputs loaded = assess::load_nav_inputs(a.inputs);
@@ -42,7 +77,9 @@ void run_diagnose(const DiagnoseArgs& a) {
   } catch (const std::invalid_argument& e) {
     throw InputError(a.inputs.config, 0, e.what());
   }
-  opt.max_added = a.max_add;
+  // --iterate: add the top confirmed effect, rerun, until the model is consistent or nothing more is
+  // confirmed (the stepwise search stops by itself; the cap only bounds the run time).
+  opt.max_added = a.iterate ? kMaxIterations : a.max_add;
   opt.screening.alpha = a.alpha;
   opt.screening.bandwidth_s = a.bandwidth_s;
   opt.verbose = !a.quiet;
@@ -51,6 +88,10 @@ void run_diagnose(const DiagnoseArgs& a) {
   const diag::Diagnosis d = diag::diagnose(in, opt);
   diag::print_report(std::cout, d);
   if (!a.json.empty()) diag::write_json(d, a.json);
+  if (!a.write_config.empty()) {
+    write_tuned_config(loaded.config.config_path, d, a.write_config);
+    if (!a.quiet) std::cerr << "ldv diagnose: tuned configuration written to " << a.write_config << "\n";
+  }
   if (!a.plots.empty()) {
     const auto written = diag::write_plots(d, a.plots);
     if (!a.quiet) std::cerr << "ldv diagnose: " << written << " plots in " << a.plots << "\n";
@@ -64,9 +105,13 @@ void add_diagnose_command(CLI::App& app) {
   c->add_option("--json", args->json, "write the diagnosis as JSON");
   c->add_option("--truth", args->truth, "truth .nav (KF-GINS layout, IMU centre): navigation error before/after");
   c->add_option("--plots", args->plots, "write gnuplot PNGs (and their data and scripts) into this folder");
-  c->add_option("--max-add", args->max_add, "stepwise: add at most this many effects (default 3)")->check(CLI::Range(0, 20));
+  c->add_option("--max-add", args->max_add, "stepwise: add at most this many effects (default 3; --iterate: until done)")->check(CLI::Range(0, 20));
   c->add_option("--alpha", args->alpha, "family-wise false-alarm rate of the screening (default 0.05)");
   c->add_option("--bandwidth", args->bandwidth_s, "long-run variance bandwidth [s] (default 120: > GNSS error correlation)");
+  c->add_flag("--iterate", args->iterate,
+              "diagnose, add the top confirmed effect with its estimate, rerun, until the model is consistent or nothing "
+              "more is confirmed (JSON steps and the report's step table show the fall)");
+  c->add_option("--write-config", args->write_config, "write the configuration with the added effects (YAML)");
   c->add_flag("--quiet", args->quiet, "no progress on stderr");
   c->callback([args] { run_diagnose(*args); });
 }
