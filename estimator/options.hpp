@@ -70,6 +70,10 @@ struct FilterOptions {
   // for step_confirm_s is taken up at once (covariance opened). Not robust (ldv.kfgins_compatible,
   // --kfgins-compatible): rejected, and accepted by force after gate_max_consecutive_rejects, as KF-GINS.
   bool robust_update = true;
+  // Scale the IMU white noise up from the configured floor while the GNSS position NIS says the IMU is
+  // noisier as installed (vibration) than configured; the scale is reported (NavFilter::imu_noise_scale).
+  // Off with ldv.kfgins_compatible and in `ldv diagnose` (whose model check judges the configured model).
+  bool adapt_imu_noise = true;
   double step_confirm_s = 1.0;
   int gate_max_consecutive_rejects = 10;  // then accept (re-synchronise) and flag
   bool use_gnss_velocity = true;
@@ -78,7 +82,9 @@ struct FilterOptions {
   // Alignment without a given state (estimator/ins/alignment.hpp): GNSS speed above which the course gives
   // the heading, and how many body headings to try when the mounting is unknown (hand-held: 12).
   double align_speed_mps = 2.0;
-  int align_hypotheses = 1;
+  // 8 by default: an IMU mounted backwards or sideways (common: the user cannot know which way the box
+  // sits) starts within 22.5 deg of one of them; the trials' innovations pick it. KF-GINS: 1.
+  int align_hypotheses = 8;
 
   FilterOptions();
   void print(std::ostream& out) const;

@@ -18,6 +18,10 @@ namespace {
 constexpr double kSnapshotPeriod_s = 0.2;
 constexpr double kHealthPeriod_s = 1.0;
 constexpr double kSplitTolerance_s = 1e-6;
+// IMU noise adaptation (FilterOptions::adapt_imu_noise): step in ln(scale) per position fix at NIS/3 - 1,
+// and the largest scale (1e4 on the PSD: 100x the configured noise density).
+constexpr double kNoiseAdaptGain = 0.1;
+constexpr double kMaxImuNoiseScale = 1e4;
 // Holding the IMU's rates over missing samples is sound for a few samples, not for a hole: beyond this
 // the state coasts at its velocity and the covariance opens by what a land vehicle can do meanwhile.
 constexpr double kMaxBridgedImuGap_s = 1.0;
@@ -345,8 +349,9 @@ void NavFilter::flush_covariance() {
   const Mat3 C = c_.nav.C_b_n();
   Eigen::MatrixXd Qd;
   const bool want = observer_ && observer_->wants_matrices();
-  const Mat3 Qv = C * opt_.vrw_mps_per_sqrt_s.cwiseAbs2().asDiagonal() * C.transpose() * T;
-  const Mat3 Qp = C * opt_.arw_rad_per_sqrt_s.cwiseAbs2().asDiagonal() * C.transpose() * T;
+  const double q_scale = c_.imu_noise_scale;
+  const Mat3 Qv = C * opt_.vrw_mps_per_sqrt_s.cwiseAbs2().asDiagonal() * C.transpose() * (T * q_scale);
+  const Mat3 Qp = C * opt_.arw_rad_per_sqrt_s.cwiseAbs2().asDiagonal() * C.transpose() * (T * q_scale);
   P.block<3, 3>(kVel, kVel) += Qv;
   P.block<3, 3>(kAtt, kAtt) += Qp;
   P.diagonal().tail(m) += q_c_ * T;
@@ -484,6 +489,7 @@ void NavFilter::apply_measurement(const Measurement& m) {
   const bool ok = kalman_update(c_.P, m, {gate_, opt_.robust_update, force}, rec, dx_, want ? &K_ : nullptr);
   const bool beyond_gate = !force && rec.nis > gate_;
   if (ok) correct(dx_);
+  if (opt_.adapt_imu_noise && m.kind == MeasurementKind::kGnssPosition && !force) adapt_imu_noise(rec);
   if (ok && force) {
     c_.status |= kStatusGateResync;
     ++faults_.gate_resyncs;
@@ -508,6 +514,20 @@ void NavFilter::apply_measurement(const Measurement& m) {
   innovations_.push_back(rec);
   if (want) observer_->on_update(rec, m.H, K_);
   check_health(false);
+}
+
+void NavFilter::adapt_imu_noise(const InnovationRecord& rec) {
+  // Hold the position NIS at its expectation (3) by scaling the IMU white noise: a stochastic
+  // approximation in ln(scale), each fix nudging it by kNoiseAdaptGain (NIS / 3 - 1). The NIS is capped
+  // at the gate so that an outlier, which the robust update already discounts, moves it little; the
+  // scale never drops below 1 (the configured noise is the floor) nor exceeds kMaxImuNoiseScale.
+  const double nis = std::min(rec.nis, gate_);
+  const double step = kNoiseAdaptGain * (nis / 3.0 - 1.0);
+  c_.imu_noise_scale = std::clamp(c_.imu_noise_scale * std::exp(step), 1.0, kMaxImuNoiseScale);
+}
+
+void NavFilter::set_imu_noise_scale(double psd_scale) {
+  if (std::isfinite(psd_scale)) c_.imu_noise_scale = std::clamp(psd_scale, 1.0, kMaxImuNoiseScale);
 }
 
 void NavFilter::correct(const Eigen::VectorXd& dx) {

@@ -53,6 +53,10 @@ class NavFilter {
   void set_input_gyro_bias(const Vec3& gyro_bias_rad_s) { opt_.input_gyro_bias_rad_s = gyro_bias_rad_s; }
   std::uint32_t status() const { return c_.status; }
   const FaultCounters& faults() const { return faults_; }
+  // The factor on the configured IMU white noise the filter runs with (FilterOptions::adapt_imu_noise).
+  double imu_noise_scale() const { return c_.imu_noise_scale; }
+  // Its start value (after initialize): e.g. the noise a standstill in the data showed (installed_imu_noise.hpp).
+  void set_imu_noise_scale(double psd_scale);
   // Angular rate and specific force of the last sample, error-compensated (body axes).
   const MechanizationStep& last_step() const { return c_.mech.last(); }
   // Records since the last call (pre-update innovations with gate decisions).
@@ -88,12 +92,16 @@ class NavFilter {
     Vec3 last_rejected_y[3] = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};  // innovation of the last rejection
     std::uint32_t status = 0;
     double imu_interval_s = 0.0;  // the last regular IMU interval (what one increment normally spans)
+    // Factor on the configured IMU white-noise PSDs, adapted from the GNSS position NIS (>= 1: the
+    // configuration is the floor). Vibration of an installed IMU is often 10x its datasheet noise.
+    double imu_noise_scale = 1.0;
     std::deque<Fix> applied;  // fixes applied within the history horizon (what a snapshot contains)
   };
 
   void process_imu(const ImuIncrement& raw);
   void propagate_sample(const ImuIncrement& raw_part);
   void coast_over_imu_gap(double t_end_s);
+  void adapt_imu_noise(const InnovationRecord& rec);
   void flush_covariance();
   void apply_gnss(const Fix& fix);
   void enqueue(const Fix& fix);

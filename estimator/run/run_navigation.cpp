@@ -5,6 +5,7 @@
 
 #include "common/geo/earth_model.hpp"
 #include "common/io/input_error.hpp"
+#include "estimator/calibrate/installed_imu_noise.hpp"
 #include "estimator/ins/alignment.hpp"
 #include "estimator/run/alignment_options_from.hpp"
 
@@ -59,10 +60,11 @@ FilterOptions options_from_kfgins(const KfGinsConfig& cfg) {
   // KF-GINS's gate (reject, then force after a count) instead of the robust update.
   o.robust_update = !ldv_key<bool>(cfg, "kfgins_compatible", !o.robust_update);
   o.step_confirm_s = ldv_key<double>(cfg, "step_confirm_s", o.step_confirm_s);
+  o.adapt_imu_noise = ldv_key<bool>(cfg, "adapt_imu_noise", o.robust_update && o.adapt_imu_noise);
   o.zupt.enabled = ldv_key<bool>(cfg, "zupt", o.zupt.enabled);
   o.history_s = ldv_key<double>(cfg, "history_s", 0.0);  // offline: fixes are never late
   o.align_speed_mps = ldv_key<double>(cfg, "align_speed_mps", o.align_speed_mps);
-  o.align_hypotheses = ldv_key<int>(cfg, "align_hypotheses", o.align_hypotheses);
+  o.align_hypotheses = ldv_key<int>(cfg, "align_hypotheses", o.robust_update ? o.align_hypotheses : 1);
   if (!(o.align_speed_mps > 0) || o.align_hypotheses < 1 || o.align_hypotheses > 360)
     throw InputError(cfg.config_path, cfg.ldv["align_speed_mps"] ? cfg.ldv["align_speed_mps"].Mark().line + 1 : 0,
                      "keys 'ldv.align_speed_mps' (> 0 m/s) and 'ldv.align_hypotheses' (1..360): out of range");
@@ -101,21 +103,40 @@ struct DataAlignment {
   Vec3 gyro_bias_seed_rad_s = Vec3::Zero();  // a turn-on bias the static start showed (else 0)
 };
 
+std::string fixed_text(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.1f", v);
+  return b;
+}
+
 // The aligner over imu[i...] and the fixes from gnss[g...] up to each IMU epoch; throws when it never aligns.
 DataAlignment align_from_data(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
-                              const KfGinsConfig& cfg, const AlignmentOptions& ao, size_t i, size_t g) {
+                              const KfGinsConfig& cfg, const AlignmentOptions& ao_given, size_t i0, size_t g0) {
   const double t1 = cfg.end_time_s < 0 ? 1e300 : cfg.end_time_s;
-  Aligner aligner(ao);
-  for (; i < imu.size() && imu[i].t_s <= t1 && !aligner.aligned(); ++i) {
-    aligner.add_imu(imu[i]);
-    for (; g < gnss.size() && gnss[g].t_s <= imu[i].t_s; ++g) aligner.add_gnss(gnss[g]);
+  // A vehicle (or a walker) that never reaches the configured speed: RTK positions still give a course
+  // good to a few degrees at walking pace, so try once more at kSlowCourseSpeed_mps before giving up.
+  constexpr double kSlowCourseSpeed_mps = 0.5;
+  AlignmentOptions ao = ao_given;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    size_t i = i0, g = g0;
+    Aligner aligner(ao);
+    for (; i < imu.size() && imu[i].t_s <= t1 && !aligner.aligned(); ++i) {
+      aligner.add_imu(imu[i]);
+      for (; g < gnss.size() && gnss[g].t_s <= imu[i].t_s; ++g) aligner.add_gnss(gnss[g]);
+    }
+    if (aligner.aligned()) {
+      std::string method = aligner.method();
+      if (attempt > 0) method += " (the GNSS never reached " + fixed_text(ao_given.speed_min_mps) + " m/s: course from " +
+                                 fixed_text(ao.speed_min_mps) + " m/s)";
+      return {aligner.state(), aligner.std(), method, i, g, aligner.gyro_bias_seed().value_or(Vec3::Zero())};
+    }
+    if (ao.speed_min_mps <= kSlowCourseSpeed_mps) break;
+    ao.speed_min_mps = kSlowCourseSpeed_mps;
   }
-  if (!aligner.aligned())
-    throw InputError(cfg.gnss_path, 0,
-                     "could not align: no static period with usable gyros and no GNSS speed above " +
-                         std::to_string(ao.speed_min_mps) + " m/s "
-                     "(give initpos/initvel/initatt in the configuration)");
-  return {aligner.state(), aligner.std(), aligner.method(), i, g, aligner.gyro_bias_seed().value_or(Vec3::Zero())};
+  throw InputError(cfg.gnss_path, 0,
+                   "could not align: no static period with usable gyros and no GNSS speed above " +
+                       fixed_text(std::min(ao_given.speed_min_mps, kSlowCourseSpeed_mps)) +
+                       " m/s (give initpos/initvel/initatt in the configuration)");
 }
 
 size_t first_imu_index(const std::vector<ImuIncrement>& imu, const KfGinsConfig& cfg) {
@@ -210,6 +231,11 @@ RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vecto
     filter.initialize(s0, sd0);
     filter.set_input_gyro_bias(gyro_bias_seed);
   }
+  if (filter.options().adapt_imu_noise) {
+    const InstalledImuNoise noise = measure_installed_imu_noise(imu, gnss);
+    filter.set_imu_noise_scale(noise.psd_scale(filter.options().arw_rad_per_sqrt_s, filter.options().vrw_mps_per_sqrt_s));
+    sum.imu_noise_scale_start = filter.imu_noise_scale();
+  }
   sum.t_start_s = filter.state().t_s;
   sum.gyro_bias_seed_rad_s = gyro_bias_seed;
   // Fixes before the initial epoch are not used.
@@ -234,6 +260,7 @@ RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vecto
   }
   sum.t_end_s = filter.state().t_s;
   sum.faults = filter.faults();
+  sum.imu_noise_scale_end = filter.imu_noise_scale();
   sum.final_status = filter.status();
   return sum;
 }

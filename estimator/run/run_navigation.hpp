@@ -33,6 +33,9 @@ struct RunSummary {
   Vec3 gyro_bias_seed_rad_s = Vec3::Zero();  // turn-on bias from the static start, taken out (alignment.hpp)
   FaultCounters faults;
   std::uint32_t final_status = 0;
+  // With FilterOptions::adapt_imu_noise: the factor on the configured IMU noise PSD a standstill in the
+  // data showed (the adaptation's start), and the factor at the end of the run.
+  double imu_noise_scale_start = 1.0, imu_noise_scale_end = 1.0;
 };
 
 // Runs over [start_time, end_time] of the inputs (end < 0: to the end). The initial state is taken from

@@ -111,7 +111,12 @@ NavInputs load_nav_model(const NavInputArgs& a) {
     in.config.output_path = ".";
   }
   if (a.lever.size() == 3) in.options.lever_arm.init = Vec3(a.lever[0], a.lever[1], a.lever[2]);
-  if (a.kfgins_compatible) in.options.robust_update = false;
+  if (a.kfgins_compatible) {  // KF-GINS's gate, and its alignment: body x along the course
+    in.options.robust_update = false;
+    in.options.adapt_imu_noise = false;
+    const YAML::Node& ldv = in.config.ldv;
+    if (!(ldv.IsDefined() && ldv.IsMap() && ldv["align_hypotheses"])) in.options.align_hypotheses = 1;
+  }
   if (!a.model.empty()) in.options.model = a.model;
   in.options.add.insert(in.options.add.end(), a.add.begin(), a.add.end());
   in.options.drop.insert(in.options.drop.end(), a.drop.begin(), a.drop.end());

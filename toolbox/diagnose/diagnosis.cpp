@@ -2,9 +2,12 @@
 
 #include <stdexcept>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <sstream>
+
+#include "estimator/run/run_navigation.hpp"
 
 namespace ldv::diag {
 namespace {
@@ -59,12 +62,36 @@ constexpr double kOpenGateProbability = 1.0 - 1e-12;  // NIS gate ~ 60: only num
 
 bool Diagnosis::consistent() const { return add.empty() && !steps.empty() && steps.front().check.consistent(); }
 
+namespace {
+
+// One run with the IMU noise adapted to the position NIS gives the noise as installed; above
+// kApplyImuNoiseScale the model takes it (white-noise densities scaled by the square root of the PSD factor).
+void measure_imu_noise(const DiagnoseInputs& in, est::FilterOptions& model, Diagnosis& d) {
+  est::FilterOptions probe = model;
+  probe.adapt_imu_noise = true;
+  est::NavFilter filter(probe);
+  est::run_navigation(in.imu, in.gnss, in.cfg, filter, {});
+  ++d.filter_runs;
+  d.imu_noise_scale = filter.imu_noise_scale();
+  if (d.imu_noise_scale < kApplyImuNoiseScale) return;
+  const FilterRun configured = run_filter(in, model, nullptr);
+  ++d.filter_runs;
+  d.configured_check = check_model(configured, classify_epochs(configured.epochs));
+  model.arw_rad_per_sqrt_s *= std::sqrt(d.imu_noise_scale);
+  model.vrw_mps_per_sqrt_s *= std::sqrt(d.imu_noise_scale);
+  d.imu_noise_applied = true;
+}
+
+}  // namespace
+
 Diagnosis diagnose(const DiagnoseInputs& in, const DiagnoseOptions& opt) {
   if (opt.max_added < 0) throw std::invalid_argument("diagnose: max_added must be >= 0, got " + std::to_string(opt.max_added));
   const double cpu0 = cpu_seconds();
   Diagnosis d;
   d.model = opt.model.model;
   est::FilterOptions current = opt.model;
+  current.adapt_imu_noise = false;  // the model check judges the model as configured
+  if (opt.measure_imu_noise) measure_imu_noise(in, current, d);
   FilterRun current_run;
   for (int step = 0; step <= opt.max_added; ++step) {
     DiagnosisStep st;

@@ -20,6 +20,10 @@ struct DiagnoseOptions {
   // A model far from the data rejects most measurements and diverges: then the diagnosis runs with
   // the gate opened (every measurement used), so the innovations still carry the missing effect.
   double open_gate_above_rejected = 0.2;
+  // The IMU noise as installed: one run with the noise adapted to the position NIS (est::FilterOptions::
+  // adapt_imu_noise) measures it; above kApplyImuNoiseScale times the configured PSD the diagnosis runs
+  // with the measured noise (first step of --iterate). The diagnosis's own runs never adapt.
+  bool measure_imu_noise = false;
   bool verbose = false;          // progress on stderr
 };
 
@@ -51,8 +55,16 @@ struct Diagnosis {
   double cpu_s = 0.0;
   int filter_runs = 0;
   bool gate_opened = false;          // the model rejected too many measurements: diagnosed without gate
+  // The configured IMU white-noise PSD times this is what the data say (1: not measured or not above the
+  // configuration); when applied, configured_check is the model check with the configured noise.
+  double imu_noise_scale = 1.0;
+  bool imu_noise_applied = false;
+  ModelCheck configured_check;
   bool consistent() const;           // model check passes and nothing to add
 };
+
+// Above this factor on the configured PSD the measured IMU noise replaces the configured one.
+inline constexpr double kApplyImuNoiseScale = 2.0;
 
 Diagnosis diagnose(const DiagnoseInputs& in, const DiagnoseOptions& opt);
 

@@ -27,11 +27,17 @@ std::string str(const std::string& s) {
   return o + "\"";
 }
 
+// The items of a JSON list, comma separated, without the brackets.
+template <typename F>
+std::string list_items(size_t n, F item) {
+  std::string o;
+  for (size_t i = 0; i < n; ++i) o += (i ? ", " : "") + item(i);
+  return o;
+}
+
 template <typename F>
 std::string list(size_t n, F item) {
-  std::string o = "[";
-  for (size_t i = 0; i < n; ++i) o += (i ? ", " : "") + item(i);
-  return o + "]";
+  return "[" + list_items(n, item) + "]";
 }
 
 std::string vec(const Eigen::VectorXd& v) {
@@ -87,9 +93,20 @@ std::string candidate_json(const CandidateScore& c) {
 // The step-by-step fall (ldv diagnose --iterate): the effect added to reach step i's model (null for the
 // model under test), its estimate and sigma in that model's run (SI), and how the model then fits the
 // GNSS positions.
+std::string fit_json(const ModelCheck& check) {
+  const SensorCheck* pos = check.find(est::MeasurementKind::kGnssPosition);
+  const int total = pos ? pos->count : 0, accepted = pos ? pos->count - pos->rejected : 0;
+  return "\"accepted_fixes\": " + std::to_string(accepted) + ", \"total_fixes\": " + std::to_string(total) +
+         ", \"mean_nis\": " + (pos ? num(pos->mean_nis.value) : std::string("null")) +
+         ", \"consistent\": " + (check.consistent() ? "true" : "false");
+}
+
 std::string step_outcome_json(const Diagnosis& d, size_t i) {
   std::string added = "null", estimate = "null", sigma = "null";
-  if (i > 0) {
+  if (i == 0 && d.imu_noise_applied) {  // the measured IMU noise took the configured one's place
+    added = str("imu_noise");
+    estimate = "[" + num(d.imu_noise_scale) + "]";
+  } else if (i > 0) {
     const DiagnosisStep& prev = d.steps[i - 1];
     added = str(prev.added);
     for (const Confirmation& c : prev.confirmations) {
@@ -98,12 +115,8 @@ std::string step_outcome_json(const Diagnosis& d, size_t i) {
       sigma = vec(c.estimate.std_si);
     }
   }
-  const SensorCheck* pos = d.steps[i].check.find(est::MeasurementKind::kGnssPosition);
-  const int total = pos ? pos->count : 0, accepted = pos ? pos->count - pos->rejected : 0;
-  return "\"added\": " + added + ", \"estimate\": " + estimate + ", \"sigma\": " + sigma +
-         ", \"accepted_fixes\": " + std::to_string(accepted) + ", \"total_fixes\": " + std::to_string(total) +
-         ", \"mean_nis\": " + (pos ? num(pos->mean_nis.value) : std::string("null")) +
-         ", \"consistent\": " + (d.steps[i].check.consistent() ? "true" : "false");
+  return "\"added\": " + added + ", \"estimate\": " + estimate + ", \"sigma\": " + sigma + ", " +
+         fit_json(d.steps[i].check);
 }
 
 }  // namespace
@@ -128,8 +141,16 @@ std::string diagnosis_json(const Diagnosis& d) {
          return "{\"effect\": " + str(n.name) + ", \"reason\": " + str(n.reason) + "}";
        })
     << "},\n";
-  o << "  \"steps\": "
-    << list(d.steps.size(), [&](size_t i) {
+  // With the measured IMU noise applied, the configured model comes first: the fall starts there.
+  const std::string configured_step =
+      d.imu_noise_applied ? "{\"model_effects\": " + names(d.model_effects) +
+                                ", \"imu_noise\": \"configured\", \"added\": null, \"estimate\": null, \"sigma\": null, " +
+                                fit_json(d.configured_check) + "},\n    "
+                          : std::string();
+  o << "  \"imu_noise\": {\"psd_scale\": " << num(d.imu_noise_scale) << ", \"applied\": "
+    << (d.imu_noise_applied ? "true" : "false") << "},\n";
+  o << "  \"steps\": [\n    " << configured_step
+    << list_items(d.steps.size(), [&](size_t i) {
          const DiagnosisStep& s = d.steps[i];
          return "{\"model_effects\": " + names(s.model_effects) + ", \"top\": " +
                 (s.screening.ranked.empty() ? std::string("null") : str(s.screening.ranked.front().name)) +
@@ -143,7 +164,7 @@ std::string diagnosis_json(const Diagnosis& d) {
                 ", \"adds\": " + (s.added.empty() ? std::string("null") : str(s.added)) + ", " + step_outcome_json(d, i) +
                 "}";
        })
-    << ",\n";
+    << "\n  ],\n";
   o << "  \"model_check\": {\"before\": " << check_json(d.steps.front().check) << ", \"after\": " << check_json(d.check_after)
     << "},\n";
   o << "  \"truth\": {\"before\": " << truth_json(d.truth_before) << ", \"after\": " << truth_json(d.truth_after) << "},\n";

@@ -102,21 +102,26 @@ std::string why_nothing(const Diagnosis& d) {
 void print_steps(std::ostream& out, const Diagnosis& d) {
   out << "\n5. Step by step (GNSS position fit of each model)\n"
       << "  step  added                 estimate +- sigma                          used / fixes  mean NIS  RMS N E D [m]\n";
+  auto fit = [&](const ModelCheck& check) {
+    const SensorCheck* pos = check.find(est::MeasurementKind::kGnssPosition);
+    if (!pos) return std::string();
+    return fmt("%5.0f", static_cast<double>(pos->count - pos->rejected)) + " / " +
+           fmt("%-5.0f", static_cast<double>(pos->count)) + "  " + fmt("%8.2f", pos->mean_nis.value) + "  " +
+           fmt("%.3f", pos->rms(0)) + " " + fmt("%.3f", pos->rms(1)) + " " + fmt("%.3f", pos->rms(2));
+  };
+  if (d.imu_noise_applied)
+    out << "     -  (configured IMU noise)" << std::string(44, ' ') << fit(d.configured_check) << "\n";
   for (size_t i = 0; i < d.steps.size(); ++i) {
-    std::string added = i == 0 ? "(model under test)" : d.steps[i - 1].added, estimate;
+    std::string added = i == 0 ? (d.imu_noise_applied ? "imu_noise" : "(model under test)") : d.steps[i - 1].added, estimate;
+    if (i == 0 && d.imu_noise_applied)
+      estimate = "x" + fmt("%.1f", d.imu_noise_scale) + " the configured PSD (measured)";
     if (i > 0)
       for (const Confirmation& c : d.steps[i - 1].confirmations)
         if (c.effect == added)
           estimate = "[" + values(c.estimate.value_si, c.estimate.unit.scale) + "] +- [" +
                      values(c.estimate.std_si, c.estimate.unit.scale) + "] " + c.estimate.unit.unit;
-    const SensorCheck* pos = d.steps[i].check.find(est::MeasurementKind::kGnssPosition);
     out << "  " << fmt("%4.0f", static_cast<double>(i)) << "  " << added << std::string(added.size() < 22 ? 22 - added.size() : 1, ' ')
-        << estimate << std::string(estimate.size() < 43 ? 43 - estimate.size() : 1, ' ');
-    if (pos)
-      out << fmt("%5.0f", static_cast<double>(pos->count - pos->rejected)) << " / " << fmt("%-5.0f", static_cast<double>(pos->count))
-          << "  " << fmt("%8.2f", pos->mean_nis.value) << "  " << fmt("%.3f", pos->rms(0)) << " " << fmt("%.3f", pos->rms(1))
-          << " " << fmt("%.3f", pos->rms(2));
-    out << "\n";
+        << estimate << std::string(estimate.size() < 43 ? 43 - estimate.size() : 1, ' ') << fit(d.steps[i].check) << "\n";
   }
 }
 

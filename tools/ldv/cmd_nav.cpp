@@ -9,6 +9,7 @@
 // corrected by an `ldv calib static` calibration (--calibration or ldv.calibration; toolbox/assess/nav_inputs.hpp).
 // Outputs: FILE.nav (KF-GINS layout, one line per IMU sample), FILE_std.txt, FILE_innovations.txt.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -191,6 +192,11 @@ void print_summary(const char* what, long imu_samples, double t0, double t1, lon
                ft.covariance_resets, ft.state_resets, ft.imu_rejected, ft.imu_gaps, ft.zupts_applied, ft.zupts_skipped_moving,
                est::describe_status(f.status()).c_str(), elapsed, imu_samples / std::max(elapsed, 1e-9),
                nav_path.c_str());
+  if (f.options().adapt_imu_noise)
+    std::fprintf(stderr,
+                 "  IMU noise as installed: %.1fx the configured PSD at the end (%.1fx its density; adapted to the GNSS "
+                 "position NIS, never below the configuration; %ld fixes down-weighted by the robust update)\n",
+                 f.imu_noise_scale(), std::sqrt(f.imu_noise_scale()), ft.downweighted);
 }
 
 // Command-line alignment settings override the configuration's ldv: keys.

@@ -1,0 +1,26 @@
+#pragma once
+// The IMU's white noise as installed, from a standstill in the data: an engine idling and a vehicle body
+// shaking make it many times the datasheet's. A standstill is where the GNSS track does not move for a
+// while (the IMU's own static detector cannot be trusted for this: its thresholds come from the very
+// noise in question); over it, the sample-to-sample scatter of the rates gives the noise density.
+#include <vector>
+
+#include "common/formats/nav_types.hpp"
+
+namespace ldv::est {
+
+struct InstalledImuNoise {
+  bool found = false;  // a standstill of at least min_standstill_s
+  double standstill_s = 0.0;
+  Vec3 arw_rad_per_sqrt_s = Vec3::Zero();  // gyro white-noise density measured per axis
+  Vec3 vrw_mps_per_sqrt_s = Vec3::Zero();  // accel
+  // The factor on the configured PSDs that covers the measured noise (the larger of the gyro and accel
+  // ratios, median over axes; at least 1).
+  double psd_scale(const Vec3& arw_configured, const Vec3& vrw_configured) const;
+};
+
+// imu and gnss in time order on one time base; the standstill: GNSS speed below max_speed_mps.
+InstalledImuNoise measure_installed_imu_noise(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
+                                              double min_standstill_s = 5.0, double max_speed_mps = 0.05);
+
+}  // namespace ldv::est
