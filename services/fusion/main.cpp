@@ -101,7 +101,7 @@ int main(int argc, char** argv) {
         if (r.replayed && r.t_s <= last_innovation_t) continue;  // already published before a rewind
         rt.bus().publish("NAV_INNOVATION", ldv::innovation_message(r, last_week, innovation_seq++));
         // A GNSS solution the innovation gate refused is rejected input (service_status_t.malformed).
-        if (!r.accepted) ++rt.counters().malformed;
+        if (!r.used()) ++rt.counters().malformed;  // rejected, or kept by the robust update with a trace of weight
         last_innovation_t = std::max(last_innovation_t, r.t_s);
       }
       if (engine.navigating() && !announced) {

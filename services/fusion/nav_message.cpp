@@ -35,7 +35,7 @@ ldv_lcm::nav_innovation_t innovation_message(const est::InnovationRecord& r, int
     m.s_diag[i] = r.S(i, i);
   }
   m.nis = r.nis;
-  m.accepted = r.accepted;
+  m.accepted = r.used();  // an outlier the robust update kept with a trace of weight is reported rejected
   return m;
 }
 

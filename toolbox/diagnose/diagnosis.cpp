@@ -7,6 +7,7 @@
 #include <ctime>
 #include <sstream>
 
+#include "estimator/calibrate/installed_imu_noise.hpp"
 #include "estimator/run/run_navigation.hpp"
 
 namespace ldv::diag {
@@ -64,15 +65,13 @@ bool Diagnosis::consistent() const { return add.empty() && !steps.empty() && ste
 
 namespace {
 
-// One run with the IMU noise adapted to the position NIS gives the noise as installed; above
-// kApplyImuNoiseScale the model takes it (white-noise densities scaled by the square root of the PSD factor).
+// The IMU noise as installed, from a GNSS standstill in the data (installed_imu_noise.hpp); above
+// kApplyImuNoiseScale the model takes it (white-noise densities scaled by the square root of the PSD
+// factor). Not from the filter's in-flight adaptation: that absorbs every missing effect (a lever arm,
+// a time offset) into noise and would hide what the diagnosis is looking for.
 void measure_imu_noise(const DiagnoseInputs& in, est::FilterOptions& model, Diagnosis& d) {
-  est::FilterOptions probe = model;
-  probe.adapt_imu_noise = true;
-  est::NavFilter filter(probe);
-  est::run_navigation(in.imu, in.gnss, in.cfg, filter, {});
-  ++d.filter_runs;
-  d.imu_noise_scale = filter.imu_noise_scale();
+  const est::InstalledImuNoise noise = est::measure_installed_imu_noise(in.imu, in.gnss);
+  d.imu_noise_scale = noise.psd_scale(model.arw_rad_per_sqrt_s, model.vrw_mps_per_sqrt_s);
   if (d.imu_noise_scale < kApplyImuNoiseScale) return;
   const FilterRun configured = run_filter(in, model, nullptr);
   ++d.filter_runs;

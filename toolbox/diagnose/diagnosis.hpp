@@ -20,9 +20,9 @@ struct DiagnoseOptions {
   // A model far from the data rejects most measurements and diverges: then the diagnosis runs with
   // the gate opened (every measurement used), so the innovations still carry the missing effect.
   double open_gate_above_rejected = 0.2;
-  // The IMU noise as installed: one run with the noise adapted to the position NIS (est::FilterOptions::
-  // adapt_imu_noise) measures it; above kApplyImuNoiseScale times the configured PSD the diagnosis runs
-  // with the measured noise (first step of --iterate). The diagnosis's own runs never adapt.
+  // The IMU noise as installed, measured over a GNSS standstill in the data (est::measure_installed_imu_noise);
+  // above kApplyImuNoiseScale times the configured PSD the diagnosis runs with it (first step of --iterate).
+  // The diagnosis's own runs never adapt their noise.
   bool measure_imu_noise = false;
   bool verbose = false;          // progress on stderr
 };

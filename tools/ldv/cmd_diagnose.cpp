@@ -4,6 +4,7 @@
 //                [--json OUT.json] [--truth truth.nav] [--plots DIR]
 // Inputs as `ldv nav` takes them from files (KF-GINS text, tagged IMU CSV, RTKLIB .pos).
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <sstream>
 #include <memory>
@@ -47,6 +48,20 @@ void write_tuned_config(const std::string& config_path, const diag::Diagnosis& d
   for (const std::string& e : d.add)
     if (std::find(add.begin(), add.end(), e) == add.end()) add.push_back(e);
   root["ldv"]["add"] = add;
+  // The estimates where the configuration has a place for them: the filter starts from them.
+  for (const diag::EffectEstimate& e : d.added_estimates) {
+    if (e.name == "lever_arm" && e.value_si.size() == 3)
+      root["antlever"] = std::vector<double>{e.value_si(0), e.value_si(1), e.value_si(2)};
+    if (e.name == "time_offset" && e.value_si.size() == 1) root["ldv"]["time_offset_s"] = e.value_si(0);
+  }
+  if (d.imu_noise_applied && root["imunoise"]) {  // the noise as installed replaces the configured floor
+    for (const char* key : {"arw", "vrw"}) {
+      if (!root["imunoise"][key] || !root["imunoise"][key].IsSequence()) continue;
+      std::vector<double> v = root["imunoise"][key].as<std::vector<double>>();
+      for (double& x : v) x *= std::sqrt(d.imu_noise_scale);
+      root["imunoise"][key] = v;
+    }
+  }
   YAML::Emitter emitter;
   emitter << root;
   std::ostringstream text;

@@ -133,7 +133,7 @@ class NavOutputs {
     for (int i = 0; i < 3; ++i) innov_.num(r.innovation(i), 5);
     for (int i = 0; i < 3; ++i) innov_.num(std::sqrt(r.S(i, i)), 5);
     innov_.num(r.nis, 3);
-    innov_.num(r.accepted ? 1 : 0, 0);
+    innov_.num(r.used() ? 1 : 0, 0);  // used: an outlier the robust update kept a trace of counts as rejected
     innov_.end_line();
   }
 
