@@ -2,7 +2,7 @@
 # The vehicle bus benchmark (issue 4, issue 13): IMU-in -> NAV/TSPI-out latency (p50 ... p99.9, max),
 # loss, and CPU of each service at a 600 Hz IMU and 20 Hz GNSS, with the real services, inside a
 # private network namespace (loopback multicast only), run with the scheduling the units ship
-# (deploy/systemd: real-time FIFO for imu_acq, fusion, tspi_pub; needs root for that).
+# (deploy/systemd: real-time FIFO for imu_acq, fusion, tspi_pub, pinned to core 0; needs root for that).
 # usage: scripts/bench_bus.sh [BUILD_DIR] [--hog | --hog-all] [--no-sched] [ldv_bus_bench options]
 #   --hog       a CPU hog (a busy loop) pinned to every core but core 0: "the other core" on a 2-core box
 #   --hog-all   a busy loop on every core (nothing left idle)
@@ -28,6 +28,13 @@ done
 if [[ ${#sched[@]} -gt 0 && $(id -u) != 0 ]]; then
   echo "real-time scheduling as the units ship it needs root; running with --no-sched" >&2; sched=()
 fi
+# CPUAffinity= of the latency path's units: the bench (publisher standing in for imu_acq, receiver) and
+# every service it starts run there; stricter than the units, where gnss_link and the logger float.
+pin=()
+if [[ ${#sched[@]} -gt 0 ]]; then
+  affinity="$(sed -n 's/^CPUAffinity=//p' deploy/systemd/ldvnav-fusion.service)"
+  [[ -z "$affinity" ]] || { pin=(taskset -c "${affinity// /,}"); echo "latency path on core(s) $affinity (CPUAffinity= of the units)" >&2; }
+fi
 hogs=()
 cleanup() { for p in "${hogs[@]}"; do kill "$p" 2>/dev/null || true; done; }
 trap cleanup EXIT
@@ -35,4 +42,4 @@ for c in "${hog_cpus[@]}"; do
   taskset -c "$c" bash -c 'while :; do :; done' & hogs+=($!)
 done
 [[ ${#hogs[@]} -eq 0 ]] || echo "CPU hog: a busy loop on core(s) ${hog_cpus[*]} (pids ${hogs[*]})" >&2
-tests/integration/netns_run.sh "$bin/ldv_bus_bench" --bin "$bin" "${sched[@]}" "${args[@]}"
+${pin[@]+"${pin[@]}"} tests/integration/netns_run.sh "$bin/ldv_bus_bench" --bin "$bin" "${sched[@]}" "${args[@]}"
