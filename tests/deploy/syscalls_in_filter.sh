@@ -40,6 +40,26 @@ expand() {
   echo "${group_cache[$item]}"
 }
 failures=0
+# rtkrcv as its unit starts it (ExecStart= as written, the configuration's receiver and corrections
+# streams pointed at closed local TCP ports): it must still run after 4 s (not print its usage or fail
+# to open a console and exit), with its calls inside its filter too.
+if command -v rtkrcv >/dev/null; then
+  mkdir -p "$work/rtkrcv"
+  sed -e 's#^inpstr1-type *=.*#inpstr1-type =tcpcli#' -e 's#^inpstr1-path *=.*#inpstr1-path =127.0.0.1:52011#' \
+      -e 's#^inpstr2-path *=.*#inpstr2-path =user:pw@127.0.0.1:52012/MOUNT#' \
+      "$src/deploy/rtklib/rtkrcv_instantaneous_ar.conf" > "$work/rtkrcv/rtkrcv.conf"
+  read -r -a exec_start <<< "$(sed -n 's/^ExecStart=//p' "$src/deploy/systemd/ldvnav-rtkrcv.service")"
+  exec_start=("${exec_start[@]/\/etc\/ldvnav\/rtkrcv.conf/$work/rtkrcv/rtkrcv.conf}")
+  rc=0; (cd "$work/rtkrcv" && "$src/tests/integration/netns_run.sh" timeout -s TERM 4 strace -f -qq -o "$work/trace/rtkrcv.1" \
+        "${exec_start[@]}" < /dev/null > "$work/rtkrcv/out.txt" 2>&1) || rc=$?
+  if (( rc != 124 )); then  # 124: timeout stopped it, so it was still running
+    echo "FAIL: rtkrcv as ldvnav-rtkrcv.service starts it (${exec_start[*]}) exited ($rc) within 4 s:"; tail -5 "$work/rtkrcv/out.txt"
+    failures=$((failures + 1))
+  else
+    echo "rtkrcv: still running 4 s after its unit's ExecStart= (${exec_start[*]})"
+  fi
+  unit[rtkrcv]=ldvnav-rtkrcv
+fi
 for s in "${!unit[@]}"; do
   f="$src/deploy/systemd/${unit[$s]}.service"
   traces=("$work"/trace/"$s".*)
