@@ -14,10 +14,16 @@ mkdir -p "$work/bin" "$work/trace"
 declare -A unit=([fusion]=ldvnav-fusion [tspi_pub]=ldvnav-tspi-pub [imu_acq]=ldvnav-imu-acq [gnss_link]=ldvnav-gnss-link
                  [ldv_logger]=ldvnav-logger)
 for b in "$bin"/*; do ln -s "$b" "$work/bin/$(basename "$b")"; done
+# Each service's wrapper has strace attach to it and then execs the service, so the bench's SIGTERM
+# reaches the service itself (a service under `exec strace` outlives strace's exit on SIGTERM).
 for s in "${!unit[@]}"; do
   rm "$work/bin/$s"
-  printf '#!/bin/sh\nexec strace -f -qq -e trace=all -e signal=none -o "%s/trace/%s.%%s" "%s/%s" "$@"\n' \
-    "$work" "$s" "$bin" "$s" | sed 's/%%s/$$/' > "$work/bin/$s"
+  cat > "$work/bin/$s" <<WRAP
+#!/bin/bash
+strace -f -qq -o "$work/trace/$s.\$\$" -p \$\$ 2>/dev/null &
+for _ in \$(seq 1000); do grep -q '^TracerPid:[[:space:]]*[1-9]' /proc/\$\$/status && break; sleep 0.01; done
+exec "$bin/$s" "\$@"
+WRAP
   chmod +x "$work/bin/$s"
 done
 # Exit 3 (messages lost) is no failure here: strace slows the services down; only their calls matter.
@@ -75,6 +81,8 @@ for s in "${!unit[@]}"; do
     done
   done < <(sed -n 's/^SystemCallFilter=//p' "$f")
   (( ${#allowed[@]} > 0 )) || { echo "FAIL: ${unit[$s]}.service has no SystemCallFilter="; failures=$((failures + 1)); continue; }
+  # From the service's own execve on (before it, the wrapper's shell waited for strace to attach).
+  for t in "${traces[@]}"; do awk -v exe="/$s\", [" '/ execve\(/ && index($0, exe) && !/ENOENT/ { on = 1 } on' "$t" > "$t.service" && mv "$t.service" "$t"; done
   used="$(cat "${traces[@]}" | sed -n 's/^[0-9]* *\([a-z0-9_]*\)(.*/\1/p' | sort -u)"
   outside=()
   # execve is strace starting the service (systemd execs it before the filter applies).
