@@ -114,7 +114,10 @@ TEST(GnssLinkIntegration, GivenTheRealUbxWalkThroughAPty_ThenEverySolutionPublis
   test::ChildProcess svc(kBin, {"--config", cfg});
   Listener l;
   // Write only once the port is open: bytes buffered before the open are stale to gnss_link and dropped.
-  ASSERT_TRUE(l.spin_until([&] { return l.status.has_value() && (l.status->fault_bits & 1) == 0; }, 30.0)) << "no heartbeat";
+  // The first heartbeat goes out at ready(), before the port is opened (and its stale input flushed): only a
+  // later one (seq >= 1) with fault bit 0 clear proves the port open. Writing earlier loses the first bytes
+  // when a loaded machine delays the open.
+  ASSERT_TRUE(l.spin_until([&] { return l.status.has_value() && l.status->seq >= 1 && (l.status->fault_bits & 1) == 0; }, 30.0)) << "no heartbeat";
 
   // Given the bytes arrive in serial-sized chunks (the pty blocks when the service falls behind)
   std::thread writer([&] {
@@ -226,7 +229,10 @@ TEST(GnssLinkIntegration, GivenGarbageTruncationBadChecksumsAndAJump_ThenCounted
   test::ChildProcess svc(kBin, {"--config", cfg});
   Listener l;
   // Write only once the port is open: bytes buffered before the open are stale to gnss_link and dropped.
-  ASSERT_TRUE(l.spin_until([&] { return l.status.has_value() && (l.status->fault_bits & 1) == 0; }, 30.0));
+  // The first heartbeat goes out at ready(), before the port is opened (and its stale input flushed): only a
+  // later one (seq >= 1) with fault bit 0 clear proves the port open. Writing earlier loses the first bytes
+  // when a loaded machine delays the open.
+  ASSERT_TRUE(l.spin_until([&] { return l.status.has_value() && l.status->seq >= 1 && (l.status->fault_bits & 1) == 0; }, 30.0));
 
   auto epoch = [](int k, double north_offset_m) {
     test::NmeaEpoch e;
