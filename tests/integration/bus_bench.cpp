@@ -5,23 +5,31 @@
 //    publish; the real fusion and tspi_pub run; the NAV and TSPI that carry each sample's epoch are
 //    timed on arrival in this process (same CLOCK_REALTIME): IMU in -> NAV out, IMU in -> TSPI out;
 //  - loss: per-publisher sequence gaps on NAV and TSPI, every IMU sample turned into a NAV, fusion's
-//    and tspi_pub's dropped counters; lcm-logger records the bus as deployed;
+//    and tspi_pub's dropped counters; ldv_logger records the bus as deployed (with rotation);
 //  - the device side at the same rates on a second bus: `ldv drive` writes the simulated IMU
 //    time-stamp unit (600 Hz) and NMEA receiver (20 Hz) into ptys, imu_acq and gnss_link decode them:
 //    their IMU/GNSS_SOLUTION sequence gaps and frame counts;
-//  - CPU of each service from its heartbeats' cpu_s (lcm-logger from /proc).
+//  - CPU of each service from its heartbeats' cpu_s (the logger's too).
+// With --units DIR the services run with the scheduling their unit files ship (CPUSchedulingPolicy/
+// Priority, Nice), applied by chrt/nice before exec as systemd applies it before exec, so every thread
+// inherits it; the IMU publisher stands in for imu_acq and takes its scheduling, and the receiver that
+// times NAV/TSPI (the measuring instrument) runs above every service, so it measures them, not itself.
 // fusion starts from a warm-start state file written from the simulator's truth, so it navigates from
 // the first GNSS fix instead of aligning.
+#include <pthread.h>
+#include <sched.h>
 #include <sys/resource.h>
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <stdexcept>
 #include <sstream>
 #include <thread>
 
@@ -61,26 +69,52 @@ void print_latency(const char* what, const Percentiles& p) {
   std::printf("%-22s n %8zu  p50 %7.3f ms  p90 %7.3f ms  p99 %7.3f ms  p99.9 %7.3f ms  max %8.3f ms\n", what, p.n,
               p.p50 * 1e3, p.p90 * 1e3, p.p99 * 1e3, p.p999 * 1e3, p.max * 1e3);
 }
-double proc_cpu_s(pid_t pid) {
-  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
-  std::string s((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const size_t rp = s.rfind(')');
-  if (rp == std::string::npos) return NAN;
-  std::istringstream ss(s.substr(rp + 2));
-  std::string f;
-  double utime = 0, stime = 0;
-  for (int i = 3; i <= 15 && ss >> f; ++i) {
-    if (i == 14) utime = std::stod(f);
-    if (i == 15) stime = std::stod(f);
+// What a unit file ships for scheduling (systemd.exec CPUSchedulingPolicy=, CPUSchedulingPriority=, Nice=).
+struct UnitSched {
+  std::string policy = "other";
+  int priority = 0;
+  int nice = 0;
+};
+UnitSched unit_sched(const fs::path& unit_file) {
+  std::ifstream in(unit_file);
+  if (!in) throw std::runtime_error("cannot read " + unit_file.string());
+  UnitSched s;
+  for (std::string line; std::getline(in, line);) {
+    const size_t eq = line.find('=');
+    if (line.empty() || line[0] == '#' || eq == std::string::npos) continue;
+    const std::string key = line.substr(0, eq), value = line.substr(eq + 1);
+    if (key == "CPUSchedulingPolicy") s.policy = value;
+    else if (key == "CPUSchedulingPriority") s.priority = std::stoi(value);
+    else if (key == "Nice") s.nice = std::stoi(value);
   }
-  return (utime + stime) / static_cast<double>(sysconf(_SC_CLK_TCK));
+  if (s.policy != "other" && s.policy != "fifo" && s.policy != "rr") throw std::runtime_error(unit_file.string() + ": policy " + s.policy);
+  return s;
 }
+// The command that starts `program` with `s` applied before exec (always set: a child inherits the
+// real-time policy of the bench's receiver thread otherwise).
+std::vector<std::string> with_sched(const UnitSched& s, const std::string& program, std::vector<std::string> args) {
+  std::vector<std::string> cmd;
+  if (s.policy == "fifo" || s.policy == "rr") cmd = {"/usr/bin/chrt", s.policy == "fifo" ? "--fifo" : "--rr", std::to_string(s.priority)};
+  else cmd = {"/usr/bin/chrt", "--other", "0", "/usr/bin/nice", "-n", std::to_string(s.nice)};
+  cmd.push_back(program);
+  cmd.insert(cmd.end(), args.begin(), args.end());
+  return cmd;
+}
+void set_thread_sched(const UnitSched& s, const char* who) {
+  if (s.policy == "other") return;
+  sched_param p{};
+  p.sched_priority = s.priority;
+  const int rc = pthread_setschedparam(pthread_self(), s.policy == "fifo" ? SCHED_FIFO : SCHED_RR, &p);
+  if (rc != 0) throw std::runtime_error(std::string("cannot set real-time scheduling for the ") + who + ": " + std::strerror(rc) +
+                                        " (needs root outside a user namespace: tests/integration/netns_run.sh)");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"ldv_bus_bench: IMU-in -> NAV/TSPI-out latency, loss and CPU of the services on the bus"};
   double duration_s = 30, imu_rate_hz = 600, gnss_rate_hz = 20, tspi_rate_hz = 50, gnss_latency_s = 0.05;
-  std::string bin_dir = LDV_BIN_DIR, out_dir = "/tmp/ldv_bus_bench";
+  std::string bin_dir = LDV_BIN_DIR, out_dir = "/tmp/ldv_bus_bench", units_dir;
   bool devices = true, logger_on = true;
   app.add_option("--duration", duration_s, "seconds of data");
   app.add_option("--imu-rate", imu_rate_hz, "IMU rate [Hz]");
@@ -90,7 +124,8 @@ int main(int argc, char** argv) {
   app.add_option("--bin", bin_dir, "directory of the service binaries");
   app.add_option("--out", out_dir, "work directory (simulation, configs, logs)");
   app.add_flag("!--no-devices", devices, "skip the device side (ldv drive + imu_acq + gnss_link)");
-  app.add_flag("!--no-logger", logger_on, "no lcm-logger on the vehicle bus");
+  app.add_flag("!--no-logger", logger_on, "no ldv_logger on the vehicle bus");
+  app.add_option("--units", units_dir, "run the services with the scheduling of the unit files in this directory (deploy/systemd)");
   CLI11_PARSE(app, argc, argv);
 
   const std::string bus_url = "udpm://239.255.76.67:7667?ttl=0";
@@ -137,6 +172,23 @@ int main(int argc, char** argv) {
   std::ofstream(dir / "gnss_link.yaml") << "bus_url: \"" << dev_url << "\"\ninput: {type: serial, serial: {device: " << (dir / "gnss_tty").string()
                                         << ", baud: 115200}}\nprotocol: nmea\ngps_minus_utc_s: 18\n";
 
+  std::map<std::string, UnitSched> sched;  // by service name; empty without --units
+  if (!units_dir.empty()) {
+    for (const char* name : {"imu_acq", "gnss_link", "fusion", "tspi_pub", "logger"}) {
+      std::string unit = std::string("ldvnav-") + name + ".service";
+      std::replace(unit.begin(), unit.end(), '_', '-');
+      sched[std::string(name) == "logger" ? "ldv_logger" : name] = unit_sched(fs::path(units_dir) / unit);
+    }
+    for (const auto& [name, s] : sched)
+      std::fprintf(stderr, "scheduling from %s: %-9s %s %d, nice %d\n", units_dir.c_str(), name.c_str(), s.policy.c_str(), s.priority, s.nice);
+  }
+  if (!sched.empty()) {
+    // The measuring receiver above every service. Before the receivers' buses exist: LCM reads the
+    // socket in a thread of its own, which inherits the scheduling of the thread that creates the bus.
+    UnitSched rx_sched{"fifo", 0, 0};
+    for (const auto& [name, s] : sched) rx_sched.priority = std::max(rx_sched.priority, s.priority + 10);
+    set_thread_sched(rx_sched, "receiver");
+  }
   // Receivers first, then the services.
   Bus rx(bus_url), rx_tspi(tspi_url), rx_dev(dev_url);
   const size_t n_imu = std::min(imu.size(), static_cast<size_t>(duration_s * imu_rate_hz));
@@ -175,10 +227,15 @@ int main(int argc, char** argv) {
   }, 1000);
 
   auto logged = [&](const std::string& name, std::vector<std::string> args) {
-    return test::start_logged(bin_dir + "/" + name, args, (dir / (name + ".log")).string());
+    const std::string log = (dir / (name + ".log")).string();
+    if (sched.empty()) return test::start_logged(bin_dir + "/" + name, args, log);
+    auto cmd = with_sched(sched.count(name) ? sched.at(name) : UnitSched{}, bin_dir + "/" + name, args);
+    const std::string program = cmd.front();
+    return test::start_logged(program, {cmd.begin() + 1, cmd.end()}, log);
   };
   std::unique_ptr<test::ChildProcess> logger;
-  if (logger_on) logger = std::make_unique<test::ChildProcess>("/usr/bin/lcm-logger", std::vector<std::string>{"--lcm-url=" + bus_url, "-q", "-f", (dir / "bench.lcmlog").string()});
+  // As deploy/systemd/ldvnav-logger.service records (rotating files), so its cost is the deployed one.
+  if (logger_on) logger = logged("ldv_logger", {"--lcm-url", bus_url, "--max-file-mb", "256", "--max-total-mb", "1024", (dir / "bench.lcmlog").string()});
   auto fusion = logged("fusion", {"--config", (dir / "fusion.yaml").string()});
   auto tspi = logged("tspi_pub", {"--config", (dir / "tspi_pub.yaml").string()});
   std::unique_ptr<test::ChildProcess> drive, imu_acq, gnss_link;
@@ -205,6 +262,7 @@ int main(int argc, char** argv) {
   std::atomic<bool> done{false};
   int64_t imu_published = 0, gnss_published = 0;
   std::thread publisher([&] {
+    if (!sched.empty()) set_thread_sched(sched.at("imu_acq"), "IMU publisher (imu_acq's stand-in)");
     Bus tx(bus_url);
     const auto wall0 = std::chrono::steady_clock::now();
     auto until = [&](double t) { std::this_thread::sleep_until(wall0 + std::chrono::duration<double>(t - t0)); };
@@ -239,22 +297,23 @@ int main(int argc, char** argv) {
   }
   publisher.join();
   spin_all(2.5);  // last messages and heartbeats
-  const double logger_cpu = logger ? proc_cpu_s(logger->pid()) : NAN;
   for (auto* p : {fusion.get(), tspi.get(), imu_acq.get(), gnss_link.get()})
     if (p) p->signal(SIGTERM);
   for (auto* p : {fusion.get(), tspi.get(), imu_acq.get(), gnss_link.get()})
     if (p) p->wait_exit(5);
   if (logger) {
-    logger->signal(SIGINT);
+    logger->signal(SIGTERM);
     logger->wait_exit(5);
   }
   if (drive) drive->signal(SIGKILL);
 
   double load[3] = {0, 0, 0};
   getloadavg(load, 3);
-  std::printf("== ldv_bus_bench: %.0f s, IMU %.0f Hz, GNSS %.0f Hz (%.0f ms late), TSPI %.0f Hz, logger %s; load average %.2f %.2f %.2f on %ld cores\n",
-              duration_s, imu_rate_hz, gnss_rate_hz, gnss_latency_s * 1e3, tspi_rate_hz, logger_on ? "on" : "off", load[0], load[1],
-              load[2], sysconf(_SC_NPROCESSORS_ONLN));
+  std::printf("== ldv_bus_bench: %.0f s, IMU %.0f Hz, GNSS %.0f Hz (%.0f ms late), TSPI %.0f Hz, logger %s, scheduling %s; load average "
+              "%.2f %.2f %.2f on %ld cores\n",
+              duration_s, imu_rate_hz, gnss_rate_hz, gnss_latency_s * 1e3, tspi_rate_hz, logger_on ? "on" : "off",
+              sched.empty() ? "default (SCHED_OTHER, nice 0)" : ("of the units in " + units_dir).c_str(), load[0], load[1], load[2],
+              sysconf(_SC_NPROCESSORS_ONLN));
   print_latency("IMU in -> NAV out", percentiles(nav_latency));
   print_latency("IMU in -> TSPI out", percentiles(tspi_latency));
   const auto f = status.count("STATUS_FUSION") ? status.at("STATUS_FUSION").second : ldv_lcm::service_status_t{};
@@ -282,7 +341,6 @@ int main(int argc, char** argv) {
     std::printf("  %-18s %7.2f s CPU total, %6.2f %% over %.0f s\n", ch.c_str(), fl.second.cpu_s,
                 100.0 * (fl.second.cpu_s - fl.first.cpu_s) / span, span);
   }
-  if (logger) std::printf("  %-18s %7.2f s CPU total, %6.2f %% (from /proc)\n", "lcm-logger", logger_cpu, 100.0 * logger_cpu / (test::steady_s() - start_s + 1.5));
   rusage ru{};
   getrusage(RUSAGE_SELF, &ru);
   std::printf("  %-18s %7.2f s CPU (publisher + receivers + simulation)\n", "bench itself",

@@ -6,13 +6,19 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "tests/integration/child_process.hpp"
 
 TEST(BusBench, GivenThirtySecondsAt600HzImuAnd20HzGnss_ThenNoMessageIsLost) {
   const std::string out = (std::filesystem::temp_directory_path() / ("ldv_bus_bench_" + std::to_string(::getpid()))).string();
   const std::string report = out + ".txt";
-  ldv::test::ChildProcess bench(std::string(LDV_BIN_DIR) + "/ldv_bus_bench", {"--duration", "30", "--out", out}, report);
+  std::vector<std::string> args{"--duration", "30", "--out", out};
+  // As root (netns_run.sh keeps CAP_SYS_NICE), the services run with the scheduling their units ship, as
+  // deployed: on a loaded machine default scheduling loses messages the deployed system does not.
+  if (::geteuid() == 0) args.insert(args.end(), {"--units", std::string(LDV_SOURCE_DIR) + "/deploy/systemd"});
+  ldv::test::ChildProcess bench(std::string(LDV_BIN_DIR) + "/ldv_bus_bench", args, report);
   const int rc = bench.wait_exit(140);
   std::stringstream ss;
   ss << std::ifstream(report).rdbuf();

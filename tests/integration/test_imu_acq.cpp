@@ -117,7 +117,10 @@ TEST(ImuAcqIntegration, GivenTheTimeStampUnitThroughAPtyWith50ppmAndPpsLabels_Th
   auto svc = std::make_unique<test::ChildProcess>(bin, std::vector<std::string>{"--config", cfg});
   Listener l;
   // Until the port is open (fault bit 0 clear): bytes buffered before the open are stale and dropped.
-  ASSERT_TRUE(l.spin_until([&] { return l.status.has_value() && (l.status->fault_bits & 1) == 0; }, 5.0)) << "no heartbeat";
+  // The first heartbeat goes out at ready(), before the port is opened (and its stale input flushed): only a
+  // later one (seq >= 1) with fault bit 0 clear proves the port open. Writing earlier loses the first bytes
+  // when a loaded machine delays the open.
+  ASSERT_TRUE(l.spin_until([&] { return l.status.has_value() && l.status->seq >= 1 && (l.status->fault_bits & 1) == 0; }, 30.0)) << "no heartbeat";
 
   // When 12 s of device bytes arrive in real time
   DeviceSim sim(pty);
@@ -181,7 +184,7 @@ TEST(ImuAcqIntegration, GivenTheTimeStampUnitThroughAPtyWith50ppmAndPpsLabels_Th
   const std::size_t before = l.imu.size();
   l.spin_until([&] { return false; }, 0.5);
   std::thread device2([&] { sim.run(last + 1, last + static_cast<int>(2 * kRate_hz)); });
-  l.spin_until([&] { return l.imu.size() >= before + static_cast<std::size_t>(1.5 * kRate_hz); }, 10.0);
+  l.spin_until([&] { return l.imu.size() >= before + static_cast<std::size_t>(1.5 * kRate_hz); }, 30.0);
   device2.join();
   l.spin_until([&] { return false; }, 0.2);
   // Then it publishes again, a new sequence from 0

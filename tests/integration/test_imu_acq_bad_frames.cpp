@@ -45,13 +45,18 @@ TEST(ImuAcqBadFrames, GivenCorruptedFramesAndLineNoise_ThenGoodSamplesPublishedB
     imu.push_back(m);
   }, 10000);
   bus.subscribe<ldv_lcm::service_status_t>("STATUS_IMU_ACQ", [&](const ldv_lcm::service_status_t& m, const std::string&) { status = m; });
-  auto spin = [&](double s) {
-    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(s);
-    while (std::chrono::steady_clock::now() < end) bus.handle(5);
+  // Handles the bus until pred() holds or timeout_s passes (a loaded machine only makes it slower).
+  auto spin_until = [&](auto pred, double timeout_s) {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+    while (!pred() && std::chrono::steady_clock::now() < end) bus.handle(5);
+    return pred();
   };
-  const auto t_wait = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  const auto t_wait = std::chrono::steady_clock::now() + std::chrono::seconds(30);
   // Until the port is open (fault bit 0 clear): bytes buffered before the open are stale and dropped.
-  while (!(status && (status->fault_bits & 1) == 0) && std::chrono::steady_clock::now() < t_wait) bus.handle(10);
+  // The first heartbeat goes out at ready(), before the port is opened (and its stale input flushed): only a
+  // later one (seq >= 1) with fault bit 0 clear proves the port open. Writing earlier loses the first bytes
+  // when a loaded machine delays the open.
+  while (!(status && status->seq >= 1 && (status->fault_bits & 1) == 0) && std::chrono::steady_clock::now() < t_wait) bus.handle(10);
   ASSERT_TRUE(status) << "no heartbeat";
 
   // When 6 s of frames arrive, every 40th with a flipped payload bit, every 97th with a flipped CRC
@@ -84,12 +89,13 @@ TEST(ImuAcqBadFrames, GivenCorruptedFramesAndLineNoise_ThenGoodSamplesPublishedB
       pty.write_all(bytes.data(), bytes.size());
     }
   });
-  spin(kSamples / kRate_hz + 0.5);
   device.join();
-  spin(1.2);  // the next heartbeat
+  const int bad = bad_crc + cut;
+  // Until a heartbeat has counted every bad frame (the last frame is a bad CRC, so everything before it is
+  // out); the counts asserted below, not the sample count, so a lost sample fails at once, fault bit still set
+  spin_until([&] { return status && status->malformed >= bad_crc && status->dropped >= bad - 1; }, 30.0);
 
   // Then exactly the good samples are published, in sequence, none of the bad ones
-  const int bad = bad_crc + cut;
   ASSERT_TRUE(status);
   std::printf("[ imu_acq bad frames ] sent %d frames: %d bad CRC, %d cut short, %d noise bursts; published %zu samples "
               "(publisher gaps %lld); heartbeat: received %lld, malformed %lld, dropped %lld, fault bits 0x%x, state %d\n",
@@ -121,7 +127,8 @@ TEST(ImuAcqBadFrames, GivenCorruptedFramesAndLineNoise_ThenGoodSamplesPublishedB
     imu_device::append_frame(more, f);
   }
   pty.write_all(more.data(), more.size());
-  spin(1.2);
+  // Until the 20 are out and a heartbeat counts the last bad frame's lost sample (seen with the next good one)
+  spin_until([&] { return imu.size() >= before + 20 && status->dropped >= bad; }, 30.0);
   EXPECT_EQ(imu.size(), before + 20);
   EXPECT_EQ(seq.lost(), 0);
   EXPECT_EQ(status->dropped, bad) << "every lost device sample counted";

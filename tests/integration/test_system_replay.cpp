@@ -1,6 +1,7 @@
 // The vehicle pipeline on a real bus in a private network namespace: a simulated drive published
 // as imu_acq/gnss_link would (`ldv play`, GNSS 120 ms late), the real fusion and tspi_pub binaries,
-// lcm-logger recording. Then: TSPI rate and sequence, TSPI accuracy against the simulator's truth,
+// ldv_logger recording (as deployed; lcm-logger's 30-message queue loses messages on a loaded host, and
+// a log with a hole cannot replay to the live result). Then: TSPI rate and sequence, TSPI accuracy against the simulator's truth,
 // and the recorded log replayed through the same estimator code gives the same TSPI.
 #include <gtest/gtest.h>
 
@@ -8,7 +9,10 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
+#include <set>
 
+#include <ldv_lcm/service_status_t.hpp>
 #include <ldv_lcm/tspi_v1_t.hpp>
 
 #include "common/bus/bus.hpp"
@@ -19,6 +23,7 @@
 #include "estimator/run/run_navigation.hpp"
 #include "services/fusion/log_replay.hpp"
 #include "sim/simulator.hpp"
+#include "tests/integration/bus_spin.hpp"
 #include "tests/integration/child_process.hpp"
 
 using namespace ldv;
@@ -55,22 +60,30 @@ TEST(SystemReplay, LiveTspiIsAccurateGapFreeAndEqualsTheLogReplay) {
   const std::string tspi_cfg = (dir / "tspi_pub.yaml").string();
   std::ofstream(tspi_cfg) << "bus_url: \"" << kVehicleUrl << "\"\ntspi:\n  rate_hz: 20\n  group: 239.255.77.1\n"
                           << "  port: 7668\n  ttl: 1\n";
-  test::ChildProcess logger("/usr/bin/lcm-logger", {"--lcm-url=" + kVehicleUrl, "-q", "-f", log});
+  auto vehicle = std::make_unique<Bus>(kVehicleUrl);  // only to see the processes come up
+  std::set<std::string> up;
+  vehicle->subscribe<ldv_lcm::service_status_t>("STATUS_.*", [&](const ldv_lcm::service_status_t&, const std::string& ch) { up.insert(ch); });
+  test::ChildProcess logger(kBin + "/ldv_logger", {"--lcm-url", kVehicleUrl, log});
   test::ChildProcess fusion(kBin + "/fusion", {"--bus-url", kVehicleUrl, "--kfgins-config", (dir / "kfgins.yaml").string()});
   test::ChildProcess tspi(kBin + "/tspi_pub", {"--config", tspi_cfg});
   Bus remote("udpm://239.255.77.1:7668?ttl=1");
   std::vector<ldv_lcm::tspi_v1_t> got;
   remote.subscribe<ldv_lcm::tspi_v1_t>("TSPI", [&](const ldv_lcm::tspi_v1_t& t, const std::string&) { got.push_back(t); });
-  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  // Play only once every process listens (its first heartbeat follows its subscriptions): a service
+  // that misses the first samples the logger has would not match the log's replay.
+  ASSERT_TRUE(test::spin_until(*vehicle, [&] { return up.size() >= 3; }, 30.0))
+      << "heartbeats within 30 s: " << up.size() << " of STATUS_FUSION, STATUS_TSPI_PUB, STATUS_LOGGER";
+  vehicle.reset();
   {
     test::ChildProcess play(kBin + "/ldv", {"play", dir.string(), "--url", kVehicleUrl, "--speed", "4", "--gnss-latency", "0.12"});
     while (play.wait_exit(0.02) == 1000)
       while (remote.handle(0) > 0) {
       }
   }
-  for (int i = 0; i < 100; ++i)
-    while (remote.handle(10) > 0) {
-    }
+  // Until TSPI reaches the end of the drive (a loaded machine delays it; it does not end it early).
+  const double last_epoch_s = sim.imu.back().t_s - 0.06;
+  test::spin_until(remote, [&] { return !got.empty() && got.back().gps_sow_s >= last_epoch_s; }, 60.0);
+  test::spin_until(remote, [] { return false; }, 0.2);  // nothing may follow; a straggler would show as a gap
   for (auto* p : {&tspi, &fusion, &logger}) p->signal(SIGTERM);
   EXPECT_EQ(fusion.wait_exit(5), 0);
   EXPECT_EQ(tspi.wait_exit(5), 0);

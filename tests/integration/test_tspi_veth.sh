@@ -49,6 +49,16 @@ bus="udpm://239.255.76.67:7667?ttl=0"
 tspi_url="udpm://239.255.77.1:7668?ttl=1"
 failures=0
 
+wait_for_file_line() {  # file text: up to 30 s
+  for _ in $(seq 300); do grep -q "$2" "$1" 2>/dev/null && return 0; sleep 0.1; done
+  echo "FAIL: no '$2' in $1 within 30 s"; failures=$((failures + 1))
+}
+
+stop_after() {  # tenths_of_s pid: waits for the probe to exit, else SIGTERM (it prints its counts)
+  for _ in $(seq "$1"); do kill -0 "$2" 2>/dev/null || break; sleep 0.1; done
+  kill -TERM "$2" 2>/dev/null || true; wait "$2" || true
+}
+
 run_case() {  # ttl expected_remote(min|zero)
   local ttl="$1" expect="$2"
   cat > "$work/tspi_pub_$ttl.yaml" <<YAML
@@ -56,13 +66,18 @@ bus_url: "$bus"
 tspi: {rate_hz: 20, group: 239.255.77.1, port: 7668, ttl: $ttl, channel: TSPI}
 YAML
   # `ip netns exec` execs the program: $! is the program itself (a shell function would be a subshell).
-  ip netns exec "$nsb" "$bin/tspi_probe" count "$tspi_url" 7 > "$work/remote_$ttl.txt" & local remote=$!; pids+=($remote)
-  ip netns exec "$nsa" "$bin/tspi_probe" count "$tspi_url" 7 > "$work/local_$ttl.txt" & local local_=$!; pids+=($local_)
-  sleep 0.5
+  # Each step waits for its condition (a probe listening, tspi_pub's heartbeat), never a fixed sleep, so
+  # a loaded machine only makes it slower. The local probe stops at the 100 TSPI it expects.
+  ip netns exec "$nsb" "$bin/tspi_probe" count "$tspi_url" 60 TSPI 100 > "$work/remote_$ttl.txt" 2> "$work/remote_$ttl.err" & local remote=$!; pids+=($remote)
+  ip netns exec "$nsa" "$bin/tspi_probe" count "$tspi_url" 60 TSPI 100 > "$work/local_$ttl.txt" 2> "$work/local_$ttl.err" & local local_=$!; pids+=($local_)
+  wait_for_file_line "$work/remote_$ttl.err" subscribed; wait_for_file_line "$work/local_$ttl.err" subscribed
   ip netns exec "$nsa" "$bin/tspi_pub" --config "$work/tspi_pub_$ttl.yaml" 2> "$work/tspi_pub_$ttl.log" & local pub=$!; pids+=($pub)
-  sleep 0.5
+  inA "$bin/tspi_probe" wait "$bus" STATUS_TSPI_PUB 30 || { echo "FAIL: no tspi_pub heartbeat (TTL $ttl)"; failures=$((failures + 1)); }
   inA "$bin/tspi_probe" nav "$bus" 100 5
-  wait "$remote" "$local_"
+  # The probes stop by themselves at 100 TSPI; one that has fewer is stopped (and its count printed) 10 s
+  # after the publisher ended. With TTL 0 the remote must get nothing: 2 s after the local one has all
+  # (same packets, microseconds apart) is plenty to see a leak.
+  stop_after 100 "$local_"; stop_after "$([[ $expect == min ]] && echo 100 || echo 20)" "$remote"
   kill -TERM "$pub"; wait "$pub" || { echo "tspi_pub (TTL $ttl) did not exit cleanly"; failures=$((failures + 1)); }
   read -r _ remote_n _ remote_gaps _ remote_resets _ remote_bad < "$work/remote_$ttl.txt"
   read -r _ local_n _ local_gaps _ _ _ _ < "$work/local_$ttl.txt"

@@ -1,7 +1,12 @@
 // tspi_probe: the two ends of the remote-subscriber test (test_tspi_veth.sh).
 //   tspi_probe nav URL RATE_HZ DURATION_S      publishes a plausible nav_state_t on NAV (what fusion does)
-//   tspi_probe count URL DURATION_S [CHANNEL]  counts tspi_v1_t on CHANNEL (default TSPI) and prints
-//                                              "received N gaps G resets R" (exit 0)
+//   tspi_probe count URL MAX_S [CHANNEL [EXPECT]]  counts tspi_v1_t on CHANNEL (default TSPI) until EXPECT
+//                                              arrived, SIGTERM/SIGINT, or MAX_S; prints "received N gaps G
+//                                              resets R malformed M" (exit 0). "subscribed" on stderr once
+//                                              it listens, so a script can wait for it instead of sleeping
+//   tspi_probe wait URL CHANNEL MAX_S          exits 0 at the first message on CHANNEL (e.g. a service's
+//                                              heartbeat: it is up), 1 after MAX_S
+#include <csignal>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -14,6 +19,8 @@
 #include "common/bus/bus.hpp"
 
 namespace {
+volatile std::sig_atomic_t g_stop = 0;
+extern "C" void on_stop(int) { g_stop = 1; }
 int usage() {
   std::fprintf(stderr, "usage: tspi_probe nav URL RATE_HZ DURATION_S | tspi_probe count URL DURATION_S [CHANNEL]\n");
   return 2;
@@ -22,6 +29,8 @@ int usage() {
 
 int main(int argc, char** argv) {
   if (argc < 4) return usage();
+  std::signal(SIGTERM, on_stop);
+  std::signal(SIGINT, on_stop);
   const std::string mode = argv[1], url = argv[2];
   try {
     ldv::Bus bus(url);
@@ -43,17 +52,27 @@ int main(int argc, char** argv) {
       }
       return 0;
     }
-    if (mode == "count" && (argc == 4 || argc == 5)) {
+    if (mode == "count" && argc >= 4 && argc <= 6) {
       const double duration_s = std::atof(argv[3]);
-      const std::string channel = argc == 5 ? argv[4] : "TSPI";
+      const std::string channel = argc >= 5 ? argv[4] : "TSPI";
+      const long long expect = argc == 6 ? std::atoll(argv[5]) : -1;
       ldv::SequenceTracker seq;
       bus.subscribe<ldv_lcm::tspi_v1_t>(channel, [&](const ldv_lcm::tspi_v1_t& t, const std::string&) { seq.observe(t.seq); }, 5000);
+      std::fprintf(stderr, "subscribed\n");
       const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(duration_s);
-      while (std::chrono::steady_clock::now() < end) bus.handle(20);
+      while (!g_stop && std::chrono::steady_clock::now() < end && (expect < 0 || seq.received() < expect)) bus.handle(20);
       std::printf("received %lld gaps %lld resets %lld malformed %lld\n", static_cast<long long>(seq.received()),
                   static_cast<long long>(seq.lost()), static_cast<long long>(seq.resets()),
                   static_cast<long long>(bus.malformed()));
       return 0;
+    }
+    if (mode == "wait" && argc == 5) {
+      bool seen = false;
+      bus.subscribe_raw(argv[3], [&](const std::string&, const uint8_t*, int) { seen = true; }, 100);
+      const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(std::atof(argv[4]));
+      while (!seen && !g_stop && std::chrono::steady_clock::now() < end) bus.handle(20);
+      if (!seen) std::fprintf(stderr, "tspi_probe: nothing on %s within %s s\n", argv[3], argv[4]);
+      return seen ? 0 : 1;
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tspi_probe: %s\n", e.what());
