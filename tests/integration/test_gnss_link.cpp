@@ -25,9 +25,9 @@
 
 #include "common/bus/bus.hpp"
 #include "tests/integration/bus_spin.hpp"
-#include "services/gnss_link/protocols/rtklib_solution.hpp"
-#include "services/gnss_link/protocols/ubx_framer.hpp"
-#include "services/gnss_link/protocols/ubx_messages.hpp"
+#include "common/formats/rtklib_solution.hpp"
+#include "common/formats/ubx_framer.hpp"
+#include "common/formats/ubx_messages.hpp"
 #include "tests/integration/child_process.hpp"
 #include "tests/integration/pty_pair.hpp"
 #include "tests/services_acq/nmea_text.hpp"
