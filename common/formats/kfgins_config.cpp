@@ -1,9 +1,12 @@
 #include "common/formats/kfgins_config.hpp"
 
+#include <algorithm>
+
 #include <filesystem>
 #include <fstream>
 #include <vector>
 
+#include "common/config/config_section.hpp"
 #include "common/io/input_error.hpp"
 #include "common/io/output_file.hpp"
 #include "common/io/text_file_lines.hpp"
@@ -73,6 +76,47 @@ std::string resolve_data_path(const std::string& p, const std::string& config_pa
   return p;
 }
 
+namespace {
+
+// Every key a KF-GINS configuration may hold: KF-GINS's own, and ldvnav's `ldv:` section (read by
+// estimator/run/run_navigation.cpp options_from_kfgins, toolbox/assess/nav_inputs.cpp and `ldv nav`;
+// written by `ldv sim` and `ldv diagnose --write-config`). A key not listed here is a typo: refused with
+// the nearest valid key rather than silently ignored.
+const std::vector<std::string> kKfGinsKeys = {
+    "imupath", "gnsspath", "outputpath", "imudatalen", "imudatarate", "starttime", "endtime", "initpos",
+    "initvel", "initatt", "initposstd", "initvelstd", "initattstd", "initgyrbias", "initaccbias", "initgyrscale",
+    "initaccscale", "initbgstd", "initbastd", "initsgstd", "initsastd", "imunoise", "antlever", "ldv"};
+const std::vector<std::string> kImuNoiseKeys = {"arw", "vrw", "gbstd", "abstd", "gsstd", "asstd", "corrtime"};
+const std::vector<std::string> kLdvKeys = {
+    // model and filter
+    "model", "add", "drop", "cov_period_s", "gate_probability", "kfgins_compatible", "step_confirm_s",
+    "adapt_imu_noise", "use_gnss_velocity", "zupt", "history_s", "align_speed_mps", "align_hypotheses",
+    "gnss_bias_sigma_m", "gnss_bias_tau_s", "time_offset_s",
+    // inputs
+    "week", "pos_height_offset_m", "float_std_min_m", "imu_time_shift_s", "imu_latency", "calibration",
+    // written by `ldv sim` (its truth and settings, for the record)
+    "simulator", "declared_effects_si", "gnss_latency_s"};
+
+void refuse_unknown_in(const std::string& path, const YAML::Node& map, const std::vector<std::string>& known,
+                       const std::string& prefix) {
+  if (!map.IsMap()) return;
+  for (const auto& kv : map) {
+    const std::string key = kv.first.as<std::string>();
+    if (std::find(known.begin(), known.end(), key) != known.end()) continue;
+    const std::string near = config::nearest_name(key, known);
+    throw InputError(path, kv.first.Mark().line + 1,
+                     "unknown key '" + prefix + key + "'" + (near.empty() ? "" : " (did you mean '" + prefix + near + "'?)"));
+  }
+}
+
+void refuse_unknown_keys(const std::string& path, const YAML::Node& root) {
+  refuse_unknown_in(path, root, kKfGinsKeys, "");
+  if (root["imunoise"]) refuse_unknown_in(path, root["imunoise"], kImuNoiseKeys, "imunoise.");
+  if (root["ldv"]) refuse_unknown_in(path, root["ldv"], kLdvKeys, "ldv.");
+}
+
+}  // namespace
+
 KfGinsConfig load_kfgins_config(const std::string& path) {
   YAML::Node root;
   try {
@@ -83,6 +127,7 @@ KfGinsConfig load_kfgins_config(const std::string& path) {
     throw InputError(path, e.mark.line + 1, "YAML syntax error: " + e.msg);
   }
   if (!root.IsMap()) throw InputError(path, 0, "expected a YAML mapping of KF-GINS keys");
+  refuse_unknown_keys(path, root);
   const Reader r{path, root};
   KfGinsConfig c;
   c.config_path = path;

@@ -84,22 +84,30 @@ ImuLatencyEstimate estimate_imu_latency(const std::vector<ImuIncrement>& imu, co
     }
     return syy - sxy * sxy / sxx;
   };
-  const double step_s = 1e-3;
-  const int n = static_cast<int>(std::lround(o.max_lag_s / step_s));
+  // Coarse grid (10 ms) over the whole range, then 1 ms around its best (the misfit is smooth in the lag).
+  const double coarse_s = 1e-2, step_s = 1e-3;
+  const int n_coarse = static_cast<int>(std::lround(o.max_lag_s / coarse_s));
+  double coarse_best_s = 0.0, coarse_best_cost = misfit(0.0);
+  for (int i = -n_coarse; i <= n_coarse; ++i) {
+    const double c = misfit(i * coarse_s);
+    if (c < coarse_best_cost) coarse_best_cost = c, coarse_best_s = i * coarse_s;
+  }
+  if (std::abs(coarse_best_s) >= o.max_lag_s - coarse_s) return out;  // at the edge of the search: not a minimum
+  const int n = 20;  // fine grid: coarse best +- 20 ms
   std::vector<double> cost(2 * n + 1);
   int best = 0;
   for (int i = 0; i <= 2 * n; ++i) {
-    cost[i] = misfit((i - n) * step_s);
+    cost[i] = misfit(coarse_best_s + (i - n) * step_s);
     if (cost[i] < cost[best]) best = i;
   }
-  if (best == 0 || best == 2 * n) return out;  // at the edge of the search: not a minimum
+  if (best == 0 || best == 2 * n) return out;
   // Parabola through the minimum and its neighbours (a few steps apart for a stable curvature).
   const int w = std::min({5, best, 2 * n - best});
   const double c0 = cost[best - w], c1 = cost[best], c2 = cost[best + w], hstep = w * step_s;
   const double curvature = (c0 - 2.0 * c1 + c2) / (hstep * hstep);  // d2 cost / d lag2
   if (!(curvature > 0.0)) return out;
   const double offset = 0.5 * hstep * (c0 - c2) / (c0 - 2.0 * c1 + c2);
-  out.lag_s = (best - n) * step_s + std::clamp(offset, -hstep, hstep);
+  out.lag_s = coarse_best_s + (best - n) * step_s + std::clamp(offset, -hstep, hstep);
   const double dof = std::max(1.0, static_cast<double>(iv.size()) - 2.0);
   const double residual_var = std::max(misfit(out.lag_s), 0.0) / dof;
   out.residual_rms_rad = std::sqrt(residual_var);

@@ -8,7 +8,8 @@
 // the IMU's heading change over each GNSS interval [t_k, t_k+1] is the integral of the gyro rate about
 // it between t_k + lag and t_k+1 + lag; the GNSS course change is taken from the track (chords of
 // consecutive fixes). The lag minimises the squared misfit with a constant gyro bias fitted alongside
-// (grid of 1 ms steps, parabolic refinement); sigma from the misfit's curvature and residual scatter.
+// (10 ms grid, then 1 ms around its best, parabolic refinement); sigma from the misfit's curvature and
+// residual scatter.
 #include <algorithm>
 #include <cmath>
 #include <vector>

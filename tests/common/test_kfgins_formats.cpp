@@ -75,6 +75,24 @@ TEST(KfGinsFiles, GnssSevenOrThirteenColumns) {
             std::string::npos);
 }
 
+TEST(KfGinsConfig, AMistypedKeyIsRefusedWithTheNearestValidOne) {
+  // A typo used to be silently ignored (the default kept): now the file, the line and the key it meant.
+  const std::string base =
+      "imupath: a.txt\ngnsspath: b.txt\nimunoise:\n  arw: [1,1,1]\n  vrw: [1,1,1]\n  gbstd: [1,1,1]\n"
+      "  abstd: [1,1,1]\n  corrtime: 1\n";
+  const std::string top = error_of([&] { load_kfgins_config(write_temp("typo_top.yaml", base + "antleverr: [0,0,0]\n")); });
+  EXPECT_NE(top.find("typo_top.yaml:9: unknown key 'antleverr' (did you mean 'antlever'?)"), std::string::npos) << top;
+  const std::string noise =
+      error_of([&] { load_kfgins_config(write_temp("typo_noise.yaml", base + "  gsstdd: [1,1,1]\n")); });
+  EXPECT_NE(noise.find("unknown key 'imunoise.gsstdd' (did you mean 'imunoise.gsstd'?)"), std::string::npos) << noise;
+  const std::string ldv = error_of(
+      [&] { load_kfgins_config(write_temp("typo_ldv.yaml", base + "ldv:\n  model: ins15\n  align_hypothesis: 12\n")); });
+  EXPECT_NE(ldv.find("typo_ldv.yaml:11: unknown key 'ldv.align_hypothesis' (did you mean 'ldv.align_hypotheses'?)"),
+            std::string::npos)
+      << ldv;
+  EXPECT_NO_THROW(load_kfgins_config(write_temp("known_ldv.yaml", base + "ldv:\n  model: ins15\n  imu_latency: off\n")));
+}
+
 TEST(KfGinsConfig, ReadsKfGinsKeysInEngineeringUnitsAndReportsWrongTypes) {
   const std::string good = write_temp("good.yaml",
                                       "imupath: a.txt\ngnsspath: b.txt\noutputpath: .\nimudatalen: 7\n"
