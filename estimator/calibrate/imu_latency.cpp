@@ -65,10 +65,16 @@ ImuLatencyEstimate estimate_imu_latency(const std::vector<ImuIncrement>& imu, co
     chi[k] = std::atan2(d.y(), d.x());
   }
   std::vector<CourseInterval> iv;
+  std::vector<double> speeds;
   for (size_t k = 1; k + 2 < gnss.size(); ++k) {
     if (std::isnan(chi[k]) || std::isnan(chi[k + 1])) continue;
     if (gnss[k].t_s - o.max_lag_s < h.t_s.front() || gnss[k + 1].t_s + o.max_lag_s > h.t_s.back()) continue;
     iv.push_back({gnss[k].t_s, gnss[k + 1].t_s, wrap_pi(chi[k + 1] - chi[k])});
+    speeds.push_back(earth::ned_between(gnss[k].pos, gnss[k + 1].pos).head<2>().norm() / (gnss[k + 1].t_s - gnss[k].t_s));
+  }
+  if (!speeds.empty()) {
+    std::nth_element(speeds.begin(), speeds.begin() + speeds.size() / 2, speeds.end());
+    out.median_speed_mps = speeds[speeds.size() / 2];
   }
   out.intervals = static_cast<int>(iv.size());
   for (const CourseInterval& c : iv)

@@ -32,10 +32,18 @@ struct ImuLatencyEstimate {
   int intervals = 0;     // GNSS intervals used
   int turning_intervals = 0;
   double residual_rms_rad = 0.0;  // heading-change misfit at the optimum
-  // Worth correcting the data for: beyond 3 sigma, at least 5 ms (below that, a small model misfit such
-  // as side-slip can bias the estimate by as much, and half a sample at 100 Hz does not matter), and
+  double median_speed_mps = 0.0;  // over the intervals used
+  // The antenna's forward lever arm l_x shifts the track's course by w l_x / v, which this estimate
+  // cannot tell from a lag of l_x / v (the main job's 0.6 m at 12 m/s read as 50 ms). So a lag counts as
+  // an IMU latency only beyond what a lever arm of kMaxLeverArmAlong_m could explain; smaller time
+  // offsets are the time_offset effect's to estimate (ldv diagnose finds it).
+  static constexpr double kMaxLeverArmAlong_m = 1.5;
+  double lever_arm_equivalent_lag_s() const { return median_speed_mps > 0 ? kMaxLeverArmAlong_m / median_speed_mps : 1e9; }
+  // Worth correcting the data for: beyond 3 sigma, beyond the lever-arm equivalent, at least 5 ms, and
   // known to better than 20 ms.
-  bool significant() const { return valid && std::abs(lag_s) > std::max(3.0 * sigma_s, 0.005) && sigma_s < 0.02; }
+  bool significant() const {
+    return valid && std::abs(lag_s) > std::max({3.0 * sigma_s, 0.005, lever_arm_equivalent_lag_s()}) && sigma_s < 0.02;
+  }
 };
 
 // imu and gnss in time order on the same time base (GPS seconds of week).

@@ -66,7 +66,10 @@ TEST_P(ImuLatency, KnownLagIsFoundWithinThreeSigma) {
     EXPECT_LT(std::abs(e.lag_s - c.lag_s), 3.0 * e.sigma_s + 1e-4)
         << c.grade << " " << c.mounting << " seed " << seed << ": estimate " << e.lag_s << " +- " << e.sigma_s;
     EXPECT_LT(e.sigma_s, 0.02);  // what significant() asks of an estimate it applies
-    EXPECT_EQ(e.significant(), c.lag_s != 0.0) << e.lag_s << " +- " << e.sigma_s;
+    // Applied when beyond what a forward lever arm of 1.5 m could explain at this speed.
+    const bool expected = std::abs(c.lag_s) > e.lever_arm_equivalent_lag_s();
+    EXPECT_EQ(e.significant(), expected) << e.lag_s << " +- " << e.sigma_s << ", lever-arm equivalent "
+                                         << e.lever_arm_equivalent_lag_s();
   }
 }
 
@@ -92,4 +95,32 @@ TEST(ImuLatencyLimits, NoTurningGivesNoEstimate) {
 }
 
 }  // namespace
+}  // namespace ldv::est
+
+namespace ldv::est {
+
+// The antenna's forward lever arm shifts the GNSS course by w l_x / v, which looks like a lag: the main
+// job's drive (0.6 m forward, 12 m/s) read as 50 ms before the lever arm was fitted alongside.
+TEST(ImuLatencyLeverArm, AForwardLeverArmIsNotTakenForALag) {
+  sim::SimRequest r;
+  r.grade = "hg1700";
+  r.seed = 5;
+  r.duration_s = 240.0;
+  r.scenario = "figure8";
+  r.gnss_rate_hz = 5.0;
+  r.effects = {"lever_arm=0.6,-0.4,-1.3"};
+  const sim::SimResult sim = sim::simulate(r);
+  for (const double lag_s : {0.0, 0.2}) {
+    std::vector<ImuIncrement> imu = sim.imu;
+    for (ImuIncrement& s : imu) s.t_s += lag_s;
+    const ImuLatencyEstimate e = estimate_imu_latency(imu, sim.gnss);
+    ASSERT_TRUE(e.valid);
+    // The lag is read with the lever arm's l_x / v on top (0.6 m at this drive's speed): within that.
+    EXPECT_LT(std::abs(e.lag_s - lag_s), 3.0 * e.sigma_s + 0.6 / e.median_speed_mps)
+        << "lag " << lag_s << ": " << e.lag_s << " +- " << e.sigma_s;
+    EXPECT_EQ(e.significant(), lag_s > e.lever_arm_equivalent_lag_s()) << e.lag_s << " +- " << e.sigma_s;
+    if (lag_s == 0.0) EXPECT_FALSE(e.significant());
+  }
+}
+
 }  // namespace ldv::est

@@ -147,7 +147,7 @@ void estimate_and_remove_imu_latency(const NavInputArgs& a, bool shift_given, Na
   if (mode == "off" || in.imu.empty() || in.gnss.empty()) return;
   in.imu_latency = est::estimate_imu_latency(in.imu, in.gnss);
   const est::ImuLatencyEstimate& e = in.imu_latency;
-  char note[200];
+  char note[320];
   if (!e.valid) {
     std::snprintf(note, sizeof note, "; IMU latency not estimated (%d turning GNSS intervals)", e.turning_intervals);
   } else if (e.significant()) {
@@ -155,6 +155,12 @@ void estimate_and_remove_imu_latency(const NavInputArgs& a, bool shift_given, Na
     in.imu_latency_applied = true;
     std::snprintf(note, sizeof note, "; IMU stamps late by %.1f +- %.1f ms (found from the turns, taken out)",
                   1e3 * e.lag_s, 1e3 * e.sigma_s);
+  } else if (std::abs(e.lag_s) > 3.0 * e.sigma_s && e.sigma_s < 0.02) {
+    std::snprintf(note, sizeof note,
+                  "; IMU latency %.1f +- %.1f ms: within what a forward antenna lever arm of %.1f m explains at %.1f m/s "
+                  "(%.0f ms), not applied (the time_offset effect can estimate it)",
+                  1e3 * e.lag_s, 1e3 * e.sigma_s, est::ImuLatencyEstimate::kMaxLeverArmAlong_m, e.median_speed_mps,
+                  1e3 * e.lever_arm_equivalent_lag_s());
   } else {
     std::snprintf(note, sizeof note, "; IMU latency %.1f +- %.1f ms (not significant, not applied)", 1e3 * e.lag_s,
                   1e3 * e.sigma_s);
