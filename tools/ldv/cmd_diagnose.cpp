@@ -1,13 +1,13 @@
 // `ldv diagnose`: compare the model with the measurements, see where it fails, find the missing
 // physical effect, add it, watch the error fall (DESIGN.md section 3; toolbox/diagnose/README.md).
 //   ldv diagnose --kfgins-config FILE.yaml [--model NAME] [--add EFFECT]... [--drop EFFECT]...
-//                [--json OUT.json] [--truth truth.nav] [--plots DIR]
+//                [--json OUT.json] [--truth truth.nav] [--plots DIR] [--iterate] [--write-config TUNED.yaml]
 // Inputs as `ldv nav` takes them from files (KF-GINS text, tagged IMU CSV, RTKLIB .pos).
 #include <algorithm>
 #include <cmath>
 #include <iostream>
-#include <sstream>
 #include <memory>
+#include <sstream>
 
 #include "common/formats/kfgins_config.hpp"
 #include "common/formats/kfgins_files.hpp"
@@ -65,7 +65,7 @@ void write_tuned_config(const std::string& config_path, const diag::Diagnosis& d
   YAML::Emitter emitter;
   emitter << root;
   std::ostringstream text;
-  text << "# Tuned by `ldv diagnose --iterate` from " << config_path << ": " << d.steps.size() - 1
+  text << "# Tuned by `ldv diagnose` from " << config_path << ": " << d.steps.size() - 1
        << " step(s); added effects and their estimates:\n";
   for (const diag::EffectEstimate& e : d.added_estimates) {
     text << "#   " << e.name << " [" << e.unit.unit << "]:";
