@@ -140,7 +140,8 @@ void estimate_and_remove_imu_latency(const NavInputArgs& a, bool shift_given, Na
                          "key 'ldv.imu_latency': expected auto or off");
       }
     }
-    if (shift_given || a.kfgins_compatible) mode = "off";
+    // KF-GINS's behaviour (--kfgins-compatible or ldv.kfgins_compatible, which turns the robust update off).
+    if (shift_given || a.kfgins_compatible || !in.options.robust_update) mode = "off";
   }
   if (mode != "auto" && mode != "off")
     throw InputError(in.config.config_path, 0, "imu_latency '" + mode + "': expected auto or off");
@@ -175,7 +176,8 @@ void decide_gnss_velocity_use(const NavInputArgs& a, NavInputs& in) {
   const bool configured = ldv.IsDefined() && ldv.IsMap() && ldv["use_gnss_velocity"];
   const bool any_velocity =
       std::any_of(in.gnss.begin(), in.gnss.end(), [](const GnssFix& f) { return f.has_velocity; });
-  if (configured || a.kfgins_compatible || !any_velocity || !in.options.use_gnss_velocity) return;
+  const bool kfgins = a.kfgins_compatible || !in.options.robust_update;
+  if (configured || kfgins || !any_velocity || !in.options.use_gnss_velocity) return;
   const est::GnssVelocityCheck c = est::check_gnss_velocity(in.gnss);
   char note[220];
   if (c.consistent()) {
