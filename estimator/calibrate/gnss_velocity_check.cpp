@@ -4,16 +4,14 @@
 #include <cmath>
 
 #include "common/geo/earth_model.hpp"
+#include "estimator/calibrate/gnss_track.hpp"
 
 namespace ldv::est {
 
 GnssVelocityCheck check_gnss_velocity(const std::vector<GnssFix>& gnss) {
   GnssVelocityCheck out;
   if (gnss.size() < 5) return out;
-  std::vector<double> dts;
-  for (size_t k = 1; k < gnss.size(); ++k) dts.push_back(gnss[k].t_s - gnss[k - 1].t_s);
-  std::nth_element(dts.begin(), dts.begin() + dts.size() / 2, dts.end());
-  const double nominal_dt = dts[dts.size() / 2];
+  const double nominal_dt = median_fix_interval_s(gnss);
   if (!(nominal_dt > 0.0)) return out;
   // Chord velocity and its variance at every fix with close neighbours (NAN elsewhere).
   struct Chord {

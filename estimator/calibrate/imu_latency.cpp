@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "common/geo/earth_model.hpp"
+#include "estimator/calibrate/gnss_track.hpp"
 
 namespace ldv::est {
 namespace {
@@ -49,13 +50,7 @@ ImuLatencyEstimate estimate_imu_latency(const std::vector<ImuIncrement>& imu, co
   }
   // Course at each fix from the chord of its neighbours; course change over consecutive fixes.
   std::vector<double> chi(gnss.size(), NAN);
-  double nominal_dt = 0.0;
-  {
-    std::vector<double> dts;
-    for (size_t k = 1; k < gnss.size(); ++k) dts.push_back(gnss[k].t_s - gnss[k - 1].t_s);
-    std::nth_element(dts.begin(), dts.begin() + dts.size() / 2, dts.end());
-    nominal_dt = dts[dts.size() / 2];
-  }
+  const double nominal_dt = median_fix_interval_s(gnss);
   if (!(nominal_dt > 0.0)) return out;
   for (size_t k = 1; k + 1 < gnss.size(); ++k) {
     const double span = gnss[k + 1].t_s - gnss[k - 1].t_s;
@@ -70,12 +65,10 @@ ImuLatencyEstimate estimate_imu_latency(const std::vector<ImuIncrement>& imu, co
     if (std::isnan(chi[k]) || std::isnan(chi[k + 1])) continue;
     if (gnss[k].t_s - o.max_lag_s < h.t_s.front() || gnss[k + 1].t_s + o.max_lag_s > h.t_s.back()) continue;
     iv.push_back({gnss[k].t_s, gnss[k + 1].t_s, wrap_pi(chi[k + 1] - chi[k])});
-    speeds.push_back(earth::ned_between(gnss[k].pos, gnss[k + 1].pos).head<2>().norm() / (gnss[k + 1].t_s - gnss[k].t_s));
+    speeds.push_back(earth::ned_between(gnss[k].pos, gnss[k + 1].pos).head<2>().norm() /
+                     (gnss[k + 1].t_s - gnss[k].t_s));
   }
-  if (!speeds.empty()) {
-    std::nth_element(speeds.begin(), speeds.begin() + speeds.size() / 2, speeds.end());
-    out.median_speed_mps = speeds[speeds.size() / 2];
-  }
+  out.median_speed_mps = median_in_place(speeds);
   out.intervals = static_cast<int>(iv.size());
   for (const CourseInterval& c : iv)
     out.turning_intervals += std::abs(c.dchi_rad) / (c.t1_s - c.t0_s) > o.min_turn_rad_s;
@@ -99,7 +92,7 @@ ImuLatencyEstimate estimate_imu_latency(const std::vector<ImuIncrement>& imu, co
     if (c < coarse_best_cost) coarse_best_cost = c, coarse_best_s = i * coarse_s;
   }
   if (std::abs(coarse_best_s) >= o.max_lag_s - coarse_s) return out;  // at the edge of the search: not a minimum
-  const int n = 20;  // fine grid: coarse best +- 20 ms
+  const int n = 20;                                                   // fine grid: coarse best +- 20 ms
   std::vector<double> cost(2 * n + 1);
   int best = 0;
   for (int i = 0; i <= 2 * n; ++i) {

@@ -38,7 +38,9 @@ struct ImuLatencyEstimate {
   // an IMU latency only beyond what a lever arm of kMaxLeverArmAlong_m could explain; smaller time
   // offsets are the time_offset effect's to estimate (ldv diagnose finds it).
   static constexpr double kMaxLeverArmAlong_m = 1.5;
-  double lever_arm_equivalent_lag_s() const { return median_speed_mps > 0 ? kMaxLeverArmAlong_m / median_speed_mps : 1e9; }
+  double lever_arm_equivalent_lag_s() const {
+    return median_speed_mps > 0 ? kMaxLeverArmAlong_m / median_speed_mps : 1e9;
+  }
   // Worth correcting the data for: beyond 3 sigma, beyond the lever-arm equivalent, at least 5 ms, and
   // known to better than 20 ms.
   bool significant() const {

@@ -74,7 +74,8 @@ TEST(DiagnoseIterate, TwoHiddenEffectsAreAddedStepByStepAndTheTunedConfigUsesEve
     }
   }
   EXPECT_EQ(checked, 4) << "lever arm (3) and time offset (1) in the verdict";
-  const double nis_first = steps[0]["mean_nis"].as<double>(), nis_last = steps[steps.size() - 1]["mean_nis"].as<double>();
+  const double nis_first = steps[0]["mean_nis"].as<double>(),
+               nis_last = steps[steps.size() - 1]["mean_nis"].as<double>();
   EXPECT_LT(nis_last, 0.2 * nis_first) << "the NIS must fall: " << nis_first << " -> " << nis_last;
   EXPECT_LT(nis_last, 4.5);
 
@@ -82,8 +83,8 @@ TEST(DiagnoseIterate, TwoHiddenEffectsAreAddedStepByStepAndTheTunedConfigUsesEve
   const YAML::Node t = YAML::LoadFile(tuned.string());
   const auto adds = t["ldv"]["add"].as<std::vector<std::string>>();
   EXPECT_NE(std::find(adds.begin(), adds.end(), "lever_arm"), adds.end());
-  const std::string nav = run("nav --kfgins-config " + tuned.string() + " --out " + (dir / "tuned.nav").string(),
-                              dir / "nav.log");
+  const std::string nav =
+      run("nav --kfgins-config " + tuned.string() + " --out " + (dir / "tuned.nav").string(), dir / "nav.log");
   EXPECT_NE(nav.find("gate rejections 0 "), std::string::npos) << nav;
   fs::remove_all(dir);
 }

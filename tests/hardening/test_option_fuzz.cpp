@@ -91,7 +91,8 @@ std::map<std::string, Command> commands() {
   const std::string cfg = (d / "drive" / "kfgins.yaml").string(), nav = (d / "drive" / "truth.nav").string();
   return {
       {"nav", {{"nav", "--kfgins-config", cfg, "--out", (d / "o.nav").string(), "--quiet"}}},
-      {"outage", {{"outage", "--kfgins-config", cfg, "--lengths", "5", "--converge", "10", "--recovery", "5", "--quiet"}}},
+      {"outage",
+       {{"outage", "--kfgins-config", cfg, "--lengths", "5", "--converge", "10", "--recovery", "5", "--quiet"}}},
       {"diagnose", {{"diagnose", "--kfgins-config", cfg, "--max-add", "0"}}},
       {"allan", {{"allan", (d / "rate.csv").string(), "--time-column", "t", "--curve-only"}}},
       {"compare", {{"compare", nav, nav}}},
@@ -118,7 +119,9 @@ std::vector<Trial> all_trials() {
         args.push_back(o.name);
         if (o.type != "FLAG")
           for (int k = 0; k < o.arity; ++k) args.push_back(v);
-        trials.push_back({args, name + " " + o.name + " " + (v.size() > 40 ? v.substr(0, 10) + "...(" + std::to_string(v.size()) + " chars)" : v)});
+        trials.push_back(
+            {args, name + " " + o.name + " " +
+                       (v.size() > 40 ? v.substr(0, 10) + "...(" + std::to_string(v.size()) + " chars)" : v)});
       }
     }
   }

@@ -17,6 +17,11 @@
 namespace ldv::assess {
 namespace {
 
+// Whether the configuration's `ldv:` section sets `key` (then the user's value wins over what the data say).
+bool has_ldv_key(const KfGinsConfig& cfg, const char* key) {
+  return cfg.ldv.IsDefined() && cfg.ldv.IsMap() && cfg.ldv[key];
+}
+
 Vec3 remap(const Vec3& v, const std::vector<int>& axes) {
   Vec3 out;
   for (int i = 0; i < 3; ++i) out(i) = (axes[i] > 0 ? 1.0 : -1.0) * v(std::abs(axes[i]) - 1);
@@ -114,8 +119,7 @@ NavInputs load_nav_model(const NavInputArgs& a) {
   if (a.kfgins_compatible) {  // KF-GINS's gate, and its alignment: body x along the course
     in.options.robust_update = false;
     in.options.adapt_imu_noise = false;
-    const YAML::Node& ldv = in.config.ldv;
-    if (!(ldv.IsDefined() && ldv.IsMap() && ldv["align_hypotheses"])) in.options.align_hypotheses = 1;
+    if (!has_ldv_key(in.config, "align_hypotheses")) in.options.align_hypotheses = 1;
   }
   if (!a.model.empty()) in.options.model = a.model;
   in.options.add.insert(in.options.add.end(), a.add.begin(), a.add.end());
@@ -131,8 +135,8 @@ void estimate_and_remove_imu_latency(const NavInputArgs& a, bool shift_given, Na
   std::string mode = a.imu_latency;
   if (mode.empty()) {
     mode = "auto";
-    const YAML::Node& ldv = in.config.ldv;
-    if (ldv.IsDefined() && ldv.IsMap() && ldv["imu_latency"]) {
+    if (has_ldv_key(in.config, "imu_latency")) {
+      const YAML::Node& ldv = in.config.ldv;
       try {
         mode = ldv["imu_latency"].as<std::string>();
       } catch (const YAML::Exception&) {
@@ -172,8 +176,7 @@ void estimate_and_remove_imu_latency(const NavInputArgs& a, bool shift_given, Na
 // GNSS velocities are fused only where they agree with the positions, unless the configuration says
 // (ldv.use_gnss_velocity) or KF-GINS's behaviour is asked for.
 void decide_gnss_velocity_use(const NavInputArgs& a, NavInputs& in) {
-  const YAML::Node& ldv = in.config.ldv;
-  const bool configured = ldv.IsDefined() && ldv.IsMap() && ldv["use_gnss_velocity"];
+  const bool configured = has_ldv_key(in.config, "use_gnss_velocity");
   const bool any_velocity =
       std::any_of(in.gnss.begin(), in.gnss.end(), [](const GnssFix& f) { return f.has_velocity; });
   const bool kfgins = a.kfgins_compatible || !in.options.robust_update;
