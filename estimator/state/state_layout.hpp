@@ -12,7 +12,7 @@ namespace ldv::est {
 constexpr int kPos = 0, kVel = 3, kAtt = 6, kNavDim = 9;
 
 struct StateBlock {
-  std::unique_ptr<Effect> effect;
+  std::shared_ptr<const Effect> effect;  // shared between copies of a filter: effects hold only their options
   int offset = 0;  // index of the block's first state in the full error state
   int dim = 0;
 };
