@@ -33,6 +33,14 @@ FilterOptions::FilterOptions() {
                       Vec3::Constant(0.01 * deg_h), Vec3::Constant(0.01 * deg_h / 3600.0)};
   accel_moving_bias = {Vec3::Constant(1e-3 * 9.8), Vec3::Constant(0.5e-3 * 9.8), 3600.0,
                        Vec3::Constant(1e-6), Vec3::Constant(1e-8)};
+  // A box bolted in by hand sits within a few degrees of the axes it was meant to; the odometer point is
+  // given or estimated within a metre.
+  vehicle_mounting = {Vec3::Zero(), Vec3::Constant(3.0 * kDegToRad), BlockOptions::Process::kConstant, Vec3::Zero(), 3600.0, Vec3::Zero()};
+  odometer_lever_arm = {Vec3::Zero(), Vec3::Constant(1.0), BlockOptions::Process::kConstant, Vec3::Zero(), 3600.0, Vec3::Zero()};
+}
+
+bool AidOptions::has(const std::string& name) const {
+  return std::find(enabled.begin(), enabled.end(), name) != enabled.end();
 }
 
 namespace {
@@ -131,7 +139,8 @@ void FilterOptions::check() const {
       {&gyro_scale, "gyro_scale"},       {&accel_scale, "accel_scale"},
       {&gyro_misalignment, "gyro_misalignment"}, {&accel_misalignment, "accel_misalignment"},
       {&g_sensitivity, "g_sensitivity"}, {&lever_arm, "lever_arm"},
-      {&gravity_anomaly, "gravity_anomaly"}, {&gnss_position_bias, "gnss_position_bias"}};
+      {&gravity_anomaly, "gravity_anomaly"}, {&gnss_position_bias, "gnss_position_bias"},
+      {&vehicle_mounting, "vehicle_mounting"}, {&odometer_lever_arm, "odometer_lever_arm"}};
   for (const auto& [b, name] : blocks) check_block(*b, name);
   require(lever_arm.init.norm() <= 1000.0, "lever_arm: longer than 1000 m");
   require(finite_in(time_offset_init_s, -100.0, 100.0), "time_offset: must be within +-100 s");
@@ -154,6 +163,15 @@ void FilterOptions::check() const {
               finite_in(zupt.f_horizontal_max_mps2, 0.0, 100.0) && finite_in(zupt.period_s, 0.0, 60.0) &&
               finite_in(zupt.std_mps, 1e-6, 100.0),
           "zupt: a setting is not finite or out of range");
+  require(finite_in(odometer_scale_init, -0.5, 0.5) && finite_in(odometer_scale_std, 0.0, 0.5),
+          "odometer_scale: init and std must be within +-0.5 (50 %)");
+  require(aids.mounting_rpy_rad.allFinite(), "aids.mounting: not finite");
+  require(finite_in(aids.nhc_std_mps, 1e-4, 100.0) && finite_in(aids.nhc_period_s, 0.0, 60.0) &&
+              finite_in(aids.zaru_std_rad_s, 0.0, 1.0) && finite_in(aids.odometer_std_mps, 1e-4, 100.0),
+          "aids: a noise or period is not finite or out of range");
+  for (const std::string& a : aids.enabled)
+    require(a == "nhc" || a == "zaru" || a == "odometer" || a == "zupt",
+            "aids: unknown aid '" + a + "' (known: nhc, zaru, odometer)");
 }
 
 }  // namespace ldv::est

@@ -45,6 +45,19 @@ struct ZuptOptions {
   double std_mps = 0.02;
 };
 
+// The land-vehicle aids (--aid, ldv.aids): names of updaters (updater_list.hpp) or "odometer", and their
+// noise. The vehicle frame: x forward, y right, z down; mounting_rpy_rad is the coarse rotation of the
+// IMU body in it (C_b_v = Rz(yaw) Ry(pitch) Rx(roll)): backwards = yaw 180 deg, upside down = roll 180 deg.
+struct AidOptions {
+  std::vector<std::string> enabled;
+  Vec3 mounting_rpy_rad = Vec3::Zero();
+  double nhc_std_mps = 0.1;     // lateral/vertical velocity a real car has (slip, suspension)
+  double nhc_period_s = 0.1;    // at most this often (vibration makes successive ones correlated)
+  double zaru_std_rad_s = 0.01 * kDegToRad;  // what the static detector lets through, beyond white noise
+  double odometer_std_mps = 0.05;
+  bool has(const std::string& name) const;
+};
+
 struct FilterOptions {
   std::string model = "kfgins21";
   std::vector<std::string> add, drop;
@@ -58,6 +71,11 @@ struct FilterOptions {
   BlockOptions gnss_position_bias;  // NED [m]; Gauss-Markov sigma / corr_time_s (ldv: gnss_bias_sigma_m, gnss_bias_tau_s)
   double time_offset_init_s = 0.0, time_offset_std_s = 0.01;
   MovingBiasOptions gyro_moving_bias, accel_moving_bias;
+  // Land-vehicle effects (entering the aids): residual mounting rotation [rad], odometer point [m, body],
+  // odometer scale [-].
+  BlockOptions vehicle_mounting, odometer_lever_arm;
+  double odometer_scale_init = 0.0, odometer_scale_std = 0.02;
+  AidOptions aids;
 
   // Taken out of every raw gyro increment before anything else: a turn-on bias the alignment's static
   // start showed (Aligner::gyro_bias_seed; NavFilter::set_input_gyro_bias). The gyro-bias states then

@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 
 #include "estimator/effects/imu_error_model.hpp"
+#include "estimator/update/sensor_names.hpp"
 
 namespace ldv::est {
 
@@ -18,6 +19,7 @@ struct FilterOptions;
 
 using Mat3X = Eigen::Matrix<double, 3, Eigen::Dynamic>;
 using Mat3XRef = Eigen::Ref<Mat3X>;
+using MatXRef = Eigen::Ref<Eigen::MatrixXd>;
 
 // A non-zero entry (row, col, value) of a block's continuous-time dynamics matrix F_ee [1/s].
 struct Triplet {
@@ -35,9 +37,12 @@ struct LinearizationPoint {
   Vec3 omega_in_n_rad_s = Vec3::Zero();
   Vec3 lever_arm_b_m = Vec3::Zero();
   Vec3 gnss_position_bias_n_m = Vec3::Zero();  // estimate added to the predicted GNSS position
+  Vec3 v_n_mps = Vec3::Zero();                 // IMU velocity (vehicle-frame aids)
+  Vec3 omega_nb_b_rad_s = Vec3::Zero();        // body rate relative to the navigation frame
+  Mat3 C_b_v = Mat3::Identity();               // IMU body to vehicle axes, with the mounting estimate
+  Vec3 odometer_lever_arm_b_m = Vec3::Zero();  // odometer point minus IMU centre, body axes
+  double odometer_scale = 0.0;                 // odometer reads (1 + scale) x the true speed
 };
-
-enum class MeasurementKind { kGnssPosition, kGnssVelocity, kZeroVelocity };
 
 // How a block is printed at the edges: value_edge = value_si * scale, in `unit`.
 struct PrintUnit {
@@ -72,11 +77,12 @@ class Effect {
   virtual void velocity_n_jacobian(Mat3XRef J) const {}
   // Direct term in a measurement's H (lever_arm, time_offset). Gyro-driven terms through the lever
   // arm are added by the velocity updater from J_gyro, not here.
-  virtual bool enters(MeasurementKind) const { return false; }
-  virtual void measurement_jacobian(MeasurementKind, const LinearizationPoint& lp, Mat3XRef H) const {}
+  // H has the measurement's rows (any number) and the block's columns.
+  virtual bool enters(SensorName) const { return false; }
+  virtual void measurement_jacobian(SensorName, const LinearizationPoint& lp, MatXRef H) const {}
   // A block that models part of a measurement's error as a state removes that part from its noise R
   // (gnss_position_bias: the reported std covers white noise and the slowly varying bias).
-  virtual void adjust_measurement_noise(MeasurementKind, Mat3& R) const {}
+  virtual void adjust_measurement_noise(SensorName, Eigen::MatrixXd& R) const {}
 
   // Adds the block's estimate to the model that corrects raw increments / measurements.
   virtual void apply(const Eigen::Ref<const Eigen::VectorXd>& x, ImuErrorModel& model) const = 0;

@@ -20,12 +20,12 @@ class GnssPositionBias final : public Vec3Block {
     return {"gnss_position_bias_n", "gnss_position_bias_e", "gnss_position_bias_d"};
   }
   PrintUnit print_unit() const override { return {1e2, "cm"}; }
-  bool enters(MeasurementKind k) const override { return k == MeasurementKind::kGnssPosition; }
-  void measurement_jacobian(MeasurementKind k, const LinearizationPoint&, Mat3XRef H) const override {
-    if (k == MeasurementKind::kGnssPosition) H = Mat3::Identity();
+  bool enters(SensorName k) const override { return k == sensors::kGnssPosition; }
+  void measurement_jacobian(SensorName k, const LinearizationPoint&, MatXRef H) const override {
+    if (k == sensors::kGnssPosition) H = Mat3::Identity();
   }
-  void adjust_measurement_noise(MeasurementKind k, Mat3& R) const override {
-    if (k != MeasurementKind::kGnssPosition) return;
+  void adjust_measurement_noise(SensorName k, Eigen::MatrixXd& R) const override {
+    if (k != sensors::kGnssPosition) return;
     for (int i = 0; i < 3; ++i) R(i, i) = std::max(R(i, i) - o_.sigma(i) * o_.sigma(i), 0.25 * R(i, i));
   }
   void propagate_nominal(Eigen::Ref<Eigen::VectorXd> x, double dt_s) const override {

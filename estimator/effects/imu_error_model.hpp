@@ -17,6 +17,11 @@ struct ImuErrorModel {
   Vec3 lever_arm_b_m = Vec3::Zero();
   double time_offset_s = 0.0;
   Vec3 gnss_position_bias_n_m = Vec3::Zero();  // NED, added to the predicted GNSS position
+  // Land-vehicle aids: the residual rotation of the IMU in the vehicle after the coarse mounting
+  // (C_b_v = C_b_v_coarse (I + [mounting x]) to first order), the odometer point and the odometer's scale.
+  Vec3 vehicle_mounting_rad = Vec3::Zero();
+  Vec3 odometer_lever_arm_b_m = Vec3::Zero();
+  double odometer_scale = 0.0;
 
   void clear_imu_terms() {
     gyro_bias_rad_s.setZero();

@@ -17,12 +17,12 @@ class TimeOffset final : public Effect {
     mean(0) = init_s_;
     std(0) = std_s_;
   }
-  bool enters(MeasurementKind k) const override {
-    return k == MeasurementKind::kGnssPosition || k == MeasurementKind::kGnssVelocity;
+  bool enters(SensorName k) const override {
+    return k == sensors::kGnssPosition || k == sensors::kGnssVelocity;
   }
-  void measurement_jacobian(MeasurementKind k, const LinearizationPoint& lp, Mat3XRef H) const override {
-    if (k == MeasurementKind::kGnssPosition) H.col(0) = -lp.v_ant_n_mps;
-    if (k == MeasurementKind::kGnssVelocity) H.col(0) = -lp.a_n_mps2;
+  void measurement_jacobian(SensorName k, const LinearizationPoint& lp, MatXRef H) const override {
+    if (k == sensors::kGnssPosition) H.col(0) = -lp.v_ant_n_mps;
+    if (k == sensors::kGnssVelocity) H.col(0) = -lp.a_n_mps2;
   }
   void apply(const Eigen::Ref<const Eigen::VectorXd>& x, ImuErrorModel& m) const override { m.time_offset_s = x(0); }
 

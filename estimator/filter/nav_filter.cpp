@@ -9,7 +9,7 @@
 #include "common/geo/earth_model.hpp"
 #include "estimator/filter/nav_error_dynamics.hpp"
 #include "common/math/chi_square.hpp"
-#include "estimator/update/gnss_position.hpp"
+#include "estimator/update/gnss_fix.hpp"
 #include "estimator/update/gnss_velocity.hpp"
 #include "estimator/update/kalman_update.hpp"
 
@@ -32,12 +32,8 @@ constexpr double kGapMaxDeadReckoning_s = 10.0;  // beyond: the velocity is not 
 // (a land vehicle stays about level; its heading is what is lost).
 constexpr double kGapMaxPosStd_m = 1e3, kGapMaxVelStd_mps = 10.0, kGapMaxTiltStd_rad = 2.0 * kDegToRad,
                  kGapMaxYawStd_rad = 30.0 * kDegToRad;
-// A continuing ZUPT whose innovation exceeds the 95 % chi-square point (3 dof) is taken as motion:
-// skipping one at a real stop costs nothing (the next comes a period later), applying one while the
-// vehicle creeps off costs meters.
-constexpr double kZuptMovingNis = 7.81;
-// How far the speed gate of a ZUPT may open with the filter's velocity uncertainty [m/s].
-constexpr double kZuptSpeedAllowance_mps = 0.7;
+// Gates are kept for measurements of up to this many rows (larger ones: computed when met).
+constexpr int kCachedGateDof = 8;
 
 ImuIncrement scaled(const ImuIncrement& in, double fraction) {
   ImuIncrement out = in;
@@ -68,7 +64,14 @@ NavFilter::NavFilter(FilterOptions options)
     J_gyro_.push_back(Mat3X::Zero(3, b.dim));
     J_accel_.push_back(Mat3X::Zero(3, b.dim));
   }
-  gate_ = math::chi_square_quantile(opt_.gate_probability, 3);
+  for (int dof = 0; dof <= kCachedGateDof; ++dof)
+    gates_.push_back(dof == 0 ? 0.0 : math::chi_square_quantile(opt_.gate_probability, dof));
+  C_b_v_coarse_ = C_b_n_from_euler(opt_.aids.mounting_rpy_rad);
+}
+
+double NavFilter::gate_threshold(int dof) const {
+  if (dof >= 0 && dof <= kCachedGateDof) return gates_[dof];
+  return math::chi_square_quantile(opt_.gate_probability, dof);
 }
 
 void NavFilter::initialize(const NavState& s, const NavStd& std) {
@@ -94,6 +97,7 @@ void NavFilter::initialize(const NavState& s, const NavStd& std) {
   c_.detector = StaticDetector(opt_.zupt.window_s, opt_.zupt.f_std_mps2, opt_.zupt.omega_max_rad_s,
                                opt_.vrw_mps_per_sqrt_s.maxCoeff(), opt_.arw_rad_per_sqrt_s.maxCoeff());
   c_.mech.reset(s);
+  c_.updaters = make_updaters(opt_);
   c_.initialized = true;
   c_.status = kStatusInitialized;
   c_.last_gnss_t_s = s.t_s;
@@ -112,6 +116,9 @@ void NavFilter::rebuild_error_model() {
   m.gnss_position_bias_n_m.setZero();
   m.lever_arm_b_m = opt_.lever_arm.init;  // used as given when lever_arm is not estimated
   m.time_offset_s = opt_.time_offset_init_s;
+  m.vehicle_mounting_rad = opt_.vehicle_mounting.init;
+  m.odometer_lever_arm_b_m = opt_.odometer_lever_arm.init;
+  m.odometer_scale = opt_.odometer_scale_init;
   for (const auto& b : layout_.blocks()) b.effect->apply(c_.x_eff.segment(b.offset - kNavDim, b.dim), m);
   c_.mech.set_gravity_anomaly_n(m.gravity_anomaly_n_mps2);
 }
@@ -191,7 +198,7 @@ void NavFilter::process_imu(const ImuIncrement& raw) {
   rem.dt_s = t_end - t_from;
 
   while (!pending_.empty()) {
-    const double t_m = pending_.front().fix.t_s - c_.model.time_offset_s;
+    const double t_m = pending_.front().t_s() - c_.model.time_offset_s;
     if (t_m > t_end + kSplitTolerance_s) break;
     if (t_m > c_.nav.t_s + kSplitTolerance_s && t_m < t_end - kSplitTolerance_s) {
       // Split the interval exactly at the measurement epoch (increments shared in proportion to time).
@@ -205,9 +212,9 @@ void NavFilter::process_imu(const ImuIncrement& raw) {
       rem.dt_s = 0.0;
     }
     flush_covariance();
-    const Fix fix = pending_.front();
+    const Event event = pending_.front();
     pending_.pop_front();
-    apply_gnss(fix);
+    apply_event(event);
   }
   if (rem.dt_s > 0.0) propagate_sample(rem);
 
@@ -217,34 +224,7 @@ void NavFilter::process_imu(const ImuIncrement& raw) {
     c_.f_n_smooth_mps2 += std::min(1.0, st.dt_s / (0.25 * opt_.zupt.window_s)) * (st.dv_sf_n_mps / st.dt_s - c_.f_n_smooth_mps2);
   c_.status = stat ? (c_.status | kStatusZuptActive) : (c_.status & ~kStatusZuptActive);
   if (c_.acc_T_s >= opt_.cov_period_s) flush_covariance();
-  // ZUPT only without recent GNSS: with RTK it adds nothing, and the detector cannot tell a smooth
-  // start from rest (|f| ~ g) from standing still; the gate catches the rest.
-  const bool gnss_recent = c_.nav.t_s - c_.last_gnss_t_s < 1.0;
-  // The filter's own speed must be small, allowing for its uncertainty (a MEMS IMU seconds into an
-  // outage is already off by tenths of m/s at a real stop), but never beyond speed_max + 0.7 m/s:
-  // a smooth crawl looks static to the detector, and a ZUPT there would zero a real speed.
-  const double sigma_v_h = std::sqrt(std::max(0.0, c_.P(kVel, kVel) + c_.P(kVel + 1, kVel + 1)));
-  const double speed_gate = opt_.zupt.speed_max_mps + std::min(3.0 * sigma_v_h, kZuptSpeedAllowance_mps);
-  if (opt_.zupt.enabled && stat && !gnss_recent && c_.nav.v_n_mps.norm() < speed_gate &&
-      c_.f_n_smooth_mps2.head<2>().norm() < opt_.zupt.f_horizontal_max_mps2 &&
-      c_.nav.t_s - c_.last_zupt_t_s >= opt_.zupt.period_s) {
-    flush_covariance();
-    const Measurement zupt = zero_velocity_measurement(c_.nav, layout_, opt_.zupt.std_mps);
-    // A ZUPT that continues a stop must agree with the velocity the previous ones left: the detector
-    // cannot see a smooth start (|f| ~ g, a small horizontal force at first), and zeroing the 2-3
-    // cm/s the vehicle then already has, with a 2 cm/s std, corrupts the velocity and tilt for the
-    // rest of an outage (meters after a minute). The first ZUPT of a stop goes to the usual gate.
-    const bool continuing = c_.nav.t_s - c_.last_zupt_t_s < 2.0 * opt_.zupt.period_s;
-    const Mat3 s_zupt = c_.P.block<3, 3>(kVel, kVel) + zupt.R;
-    const double nis = zupt.y.dot(s_zupt.ldlt().solve(zupt.y));
-    if (!continuing || nis <= kZuptMovingNis) {
-      apply_measurement(zupt);
-      ++faults_.zupts_applied;
-    } else {
-      ++faults_.zupts_skipped_moving;
-    }
-    c_.last_zupt_t_s = c_.nav.t_s;
-  }
+  run_aids();
   if (c_.nav.t_s - c_.last_gnss_t_s > 2.0)
     c_.status |= kStatusGnssOutage;
   else
@@ -259,6 +239,25 @@ void NavFilter::process_imu(const ImuIncrement& raw) {
     return;
   }
   if (c_.nav.t_s - c_.last_health_t_s >= kHealthPeriod_s) check_health(true);
+}
+
+void NavFilter::run_aids() {
+  if (c_.updaters.empty()) return;
+  const bool gnss_recent = c_.nav.t_s - c_.last_gnss_t_s < 1.0;
+  std::vector<Measurement> measurements;
+  for (size_t i = 0; i < c_.updaters.size(); ++i) {
+    const LinearizationPoint lp = linearization_point();
+    const AidContext look{c_.nav, lp, layout_, opt_, c_.P, c_.detector, c_.f_n_smooth_mps2, gnss_recent,
+                          c_.imu_noise_scale, faults_};
+    if (!c_.updaters[i]->due(look)) continue;
+    flush_covariance();
+    const LinearizationPoint lp_now = linearization_point();
+    const AidContext now{c_.nav, lp_now, layout_, opt_, c_.P, c_.detector, c_.f_n_smooth_mps2, gnss_recent,
+                         c_.imu_noise_scale, faults_};
+    measurements.clear();
+    c_.updaters[i]->measure(now, measurements);
+    for (const Measurement& m : measurements) apply_measurement(m);
+  }
 }
 
 void NavFilter::propagate_sample(const ImuIncrement& raw_part) {
@@ -386,34 +385,39 @@ LinearizationPoint NavFilter::linearization_point() const {
   lp.omega_in_n_rad_s = earth::omega_ie_n(c_.nav.pos.lat_rad) +
                         earth::omega_en_n(c_.nav.pos.lat_rad, c_.nav.pos.h_m, c_.nav.v_n_mps);
   lp.v_ant_n_mps = antenna_velocity_n(c_.nav, lp);
+  lp.v_n_mps = c_.nav.v_n_mps;
+  lp.omega_nb_b_rad_s = st.omega_ib_b_rad_s - lp.C_b_n.transpose() * lp.omega_in_n_rad_s;
+  lp.C_b_v = C_b_v_coarse_ * C_b_n_from_euler(c_.model.vehicle_mounting_rad);
+  lp.odometer_lever_arm_b_m = c_.model.odometer_lever_arm_b_m;
+  lp.odometer_scale = c_.model.odometer_scale;
   return lp;
 }
 
-void NavFilter::add_gnss(const GnssFix& fix) {
-  if (!std::isfinite(fix.t_s) || !std::isfinite(fix.pos.lat_rad) || !std::isfinite(fix.pos.lon_rad) ||
-      !std::isfinite(fix.pos.h_m) || !fix.pos_std_ned_m.allFinite() || (fix.pos_std_ned_m.array() <= 0).any() ||
-      (fix.has_velocity && (!fix.vel_n_mps.allFinite() || !(fix.vel_std_n_mps.array() > 0).all()))) {
+void NavFilter::add_gnss(const GnssFix& fix) { add_observation(std::make_shared<GnssFixObservation>(fix)); }
+
+void NavFilter::add_observation(ObservationPtr obs) {
+  if (!obs || !obs->valid()) {
     c_.status |= kStatusMeasurementRejected;
     ++faults_.measurements_rejected;
     return;
   }
   if (!c_.initialized) return;
-  const Fix f{next_fix_id_++, 0.0, fix};
-  if (fix.t_s - c_.model.time_offset_s >= c_.nav.t_s - kSplitTolerance_s) {
-    enqueue(f);
+  const Event e{next_event_id_++, 0.0, std::move(obs)};
+  if (e.t_s() - c_.model.time_offset_s >= c_.nav.t_s - kSplitTolerance_s) {
+    enqueue(e);
     return;
   }
-  rewind_and_apply(f);
+  rewind_and_apply(e);
 }
 
-void NavFilter::enqueue(const Fix& f) {
-  const auto at = std::upper_bound(pending_.begin(), pending_.end(), f.fix.t_s,
-                                   [](double t, const Fix& g) { return t < g.fix.t_s; });
-  pending_.insert(at, f);
+void NavFilter::enqueue(const Event& e) {
+  const auto at = std::upper_bound(pending_.begin(), pending_.end(), e.t_s(),
+                                   [](double t, const Event& g) { return t < g.t_s(); });
+  pending_.insert(at, e);
 }
 
-void NavFilter::rewind_and_apply(const Fix& fix) {
-  const double t_apply = fix.fix.t_s - c_.model.time_offset_s;
+void NavFilter::rewind_and_apply(const Event& event) {
+  const double t_apply = event.t_s() - c_.model.time_offset_s;
   int k = static_cast<int>(snapshots_.size()) - 1;
   while (k >= 0 && snapshots_[k].nav.t_s > t_apply + kSplitTolerance_s) --k;
   if (k < 0 || opt_.history_s <= 0.0) {
@@ -421,16 +425,16 @@ void NavFilter::rewind_and_apply(const Fix& fix) {
     ++faults_.late_dropped;
     return;
   }
-  // Fixes applied now but not contained in the snapshot are applied again, in order, with the late one.
-  const std::deque<Fix> applied_now = c_.applied;
+  // Readings applied now but not contained in the snapshot are applied again, in order, with the late one.
+  const std::deque<Event> applied_now = c_.applied;
   c_ = snapshots_[k];
   snapshots_.erase(snapshots_.begin() + k + 1, snapshots_.end());
-  for (const Fix& a : applied_now) {
+  for (const Event& a : applied_now) {
     const bool in_snapshot =
-        std::any_of(c_.applied.begin(), c_.applied.end(), [&](const Fix& b) { return b.id == a.id; });
+        std::any_of(c_.applied.begin(), c_.applied.end(), [&](const Event& b) { return b.id == a.id; });
     if (!in_snapshot) enqueue(a);
   }
-  enqueue(fix);
+  enqueue(event);
   const double t_snap = c_.nav.t_s;
   replaying_ = true;
   for (const ImuIncrement& raw : imu_history_)
@@ -441,29 +445,39 @@ void NavFilter::rewind_and_apply(const Fix& fix) {
   replaying_ = false;
 }
 
-void NavFilter::apply_gnss(const Fix& f) {
-  Fix applied = f;
+void NavFilter::apply_event(const Event& e) {
+  Event applied = e;
   applied.t_apply_s = c_.nav.t_s;
   c_.applied.push_back(applied);
   while (!c_.applied.empty() && c_.applied.front().t_apply_s < c_.nav.t_s - opt_.history_s) c_.applied.pop_front();
-  const GnssFix& fix = f.fix;
-  apply_measurement(gnss_position_measurement(c_.nav, linearization_point(), layout_, fix));
-  if (fix.has_velocity && opt_.use_gnss_velocity)
-    apply_measurement(gnss_velocity_measurement(c_.nav, linearization_point(), layout_, fix));
+  const int n = e.obs->measurement_count(opt_);
+  for (int i = 0; i < n; ++i) {
+    const LinearizationPoint lp = linearization_point();
+    apply_measurement(e.obs->measurement(i, MeasurementContext{c_.nav, lp, layout_, opt_}));
+  }
+}
+
+NavFilter::RejectRun& NavFilter::reject_run(SensorName sensor) {
+  for (RejectRun& r : c_.reject_runs)
+    if (r.sensor == sensor) return r;
+  c_.reject_runs.push_back(RejectRun{sensor});
+  return c_.reject_runs.back();
 }
 
 void NavFilter::apply_measurement(const Measurement& m) {
-  const int kind = static_cast<int>(m.kind);
+  RejectRun& run = reject_run(m.sensor);
+  if (run.last_y.size() != m.y.size()) run.last_y = Eigen::VectorXd::Zero(m.y.size());
+  const double gate = gate_threshold(m.rows());
   // Re-synchronise only on a measurement that agrees with the previous rejected one: a stream the state has
   // left repeats itself (the innovation changes by the drift since), a lone outlier arriving at that moment
   // does not.
-  const Vec3& previous = c_.last_rejected_y[kind];
+  const Eigen::VectorXd& previous = run.last_y;
   // Robust: a step is confirmed by two or more measurements beyond the gate in a row, spanning
-  // step_confirm_s (a spike of multipath is shorter); KF-GINS: after a count of rejections.
-  const bool due = opt_.robust_update
-                       ? c_.consecutive_rejects[kind] >= 2 &&
-                             c_.nav.t_s - c_.first_reject_t_s[kind] >= opt_.step_confirm_s - kSplitTolerance_s
-                       : c_.consecutive_rejects[kind] >= opt_.gate_max_consecutive_rejects;
+  // step_confirm_s (a spike of multipath is shorter); KF-GINS: after a count of rejections. Only sensors
+  // whose measured quantity can step (m.step_block) are ever forced.
+  const bool due = m.step_block >= 0 &&
+                   (opt_.robust_update ? run.count >= 2 && c_.nav.t_s - run.first_t_s >= opt_.step_confirm_s - kSplitTolerance_s
+                                       : run.count >= opt_.gate_max_consecutive_rejects);
   const bool agrees = (m.y - previous).norm() <= 0.5 * previous.norm() + 3.0 * std::sqrt(m.R.trace());
   const bool force = due && agrees;
   InnovationRecord rec;
@@ -473,9 +487,8 @@ void NavFilter::apply_measurement(const Measurement& m) {
   if (force) {
     // Re-synchronise: the state has diverged from a measurement stream it kept rejecting, so open the
     // measured block's variance by the innovation before accepting.
-    const int block = m.kind == MeasurementKind::kGnssPosition ? kPos : kVel;
-    c_.P.diagonal().segment<3>(block) += m.y.cwiseAbs2();
-    if (m.kind == MeasurementKind::kGnssPosition) {
+    c_.P.diagonal().segment(m.step_block, m.rows()) += m.y.cwiseAbs2();
+    if (m.sensor == sensors::kGnssPosition) {
       // A position error y that built up over the T seconds since the last accepted fix comes from velocity
       // errors of order 2 y / T or tilt errors of order 2 |y| / (g T^2): open those too, or the state leaves
       // the measurements again at once.
@@ -486,10 +499,10 @@ void NavFilter::apply_measurement(const Measurement& m) {
       c_.P(kAtt + 1, kAtt + 1) += tilt_rad * tilt_rad;
     }
   }
-  const bool ok = kalman_update(c_.P, m, {gate_, opt_.robust_update, force}, rec, dx_, want ? &K_ : nullptr);
-  const bool beyond_gate = !force && rec.nis > gate_;
+  const bool ok = kalman_update(c_.P, m, {gate, opt_.robust_update, force}, rec, dx_, want ? &K_ : nullptr);
+  const bool beyond_gate = !force && rec.nis > gate;
   if (ok) correct(dx_);
-  if (opt_.adapt_imu_noise && m.kind == MeasurementKind::kGnssPosition && !force) adapt_imu_noise(rec);
+  if (opt_.adapt_imu_noise && m.sensor == sensors::kGnssPosition && !force) adapt_imu_noise(rec);
   if (ok && force) {
     c_.status |= kStatusGateResync;
     ++faults_.gate_resyncs;
@@ -497,19 +510,19 @@ void NavFilter::apply_measurement(const Measurement& m) {
   // Used: within the gate, forced, or kept by the robust update with at least a quarter of its weight.
   const bool used = rec.used();
   if (ok && beyond_gate) ++faults_.downweighted;
-  if (used && m.kind != MeasurementKind::kZeroVelocity) {
+  if (used && m.gnss) {
     c_.last_gnss_t_s = c_.nav.t_s;
     c_.status &= ~(kStatusGnssRejected | kStatusGateResync);
   }
   if (!beyond_gate) {
-    c_.consecutive_rejects[kind] = 0;
+    run.count = 0;
   } else {
-    if (c_.consecutive_rejects[kind]++ == 0) c_.first_reject_t_s[kind] = c_.nav.t_s;
-    if (!due) c_.last_rejected_y[kind] = m.y;  // an outlier held back must not become the reference
+    if (run.count++ == 0) run.first_t_s = c_.nav.t_s;
+    if (!due) run.last_y = m.y;  // an outlier held back must not become the reference
   }
   if (!used) {
     ++faults_.gate_rejections;
-    if (m.kind != MeasurementKind::kZeroVelocity) c_.status |= kStatusGnssRejected;
+    if (m.gnss) c_.status |= kStatusGnssRejected;
   }
   innovations_.push_back(rec);
   if (want) observer_->on_update(rec, m.H, K_);
@@ -521,7 +534,7 @@ void NavFilter::adapt_imu_noise(const InnovationRecord& rec) {
   // approximation in ln(scale), each fix nudging it by kNoiseAdaptGain (NIS / 3 - 1). The NIS is capped
   // at the gate so that an outlier, which the robust update already discounts, moves it little; the
   // scale never drops below 1 (the configured noise is the floor) nor exceeds kMaxImuNoiseScale.
-  const double nis = std::min(rec.nis, gate_);
+  const double nis = std::min(rec.nis, gate_threshold(3));
   const double step = kNoiseAdaptGain * (nis / 3.0 - 1.0);
   c_.imu_noise_scale = std::clamp(c_.imu_noise_scale * std::exp(step), 1.0, kMaxImuNoiseScale);
 }
@@ -587,15 +600,6 @@ std::vector<InnovationRecord> NavFilter::take_innovations() {
   std::vector<InnovationRecord> out;
   out.swap(innovations_);
   return out;
-}
-
-const char* measurement_name(MeasurementKind k) {
-  switch (k) {
-    case MeasurementKind::kGnssPosition: return "gnss_position";
-    case MeasurementKind::kGnssVelocity: return "gnss_velocity";
-    case MeasurementKind::kZeroVelocity: return "zupt";
-  }
-  return "?";
 }
 
 }  // namespace ldv::est

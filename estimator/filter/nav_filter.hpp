@@ -2,12 +2,17 @@
 // NavFilter: the error-state EKF around the strapdown INS. The one engine used by `ldv nav`,
 // the live fusion service and `ldv diagnose`.
 //
-// Feeding: add_imu() for every raw IMU increment, in time order; add_gnss() for every fix, at any time:
-//  - a fix ahead of the IMU waits in a queue and is applied exactly at its epoch (label - time_offset):
-//    the IMU interval containing it is split there (offline use: feed fixes before the IMU reaches them);
-//  - a late fix (epoch already passed, up to options.history_s) rewinds to the last snapshot before its
-//    epoch and re-processes the kept raw IMU history with the fix inserted, so the result equals the
+// Feeding: add_imu() for every raw IMU increment, in time order; add_observation() (add_gnss() for a fix)
+// for every reading of an external sensor, at any time, in one time-ordered queue for all sensors:
+//  - a reading ahead of the IMU waits in the queue and is applied exactly at its epoch (label -
+//    time_offset): the IMU interval containing it is split there (offline: feed readings before the IMU
+//    reaches them);
+//  - a late reading (epoch already passed, up to options.history_s) rewinds to the last snapshot before
+//    its epoch and re-processes the kept raw IMU history with it inserted, so the result equals the
 //    on-time result (live use: GNSS solutions arrive ~0.1-1 s late). Snapshots: every 0.2 s.
+// Aids that watch the IMU stream (ZUPT, ZARU, NHC: estimator/update/updater.hpp) run after each sample.
+// A copy of a filter is an exact checkpoint: it continues exactly as the original would (the observer
+// pointer is copied too; set_observer(nullptr) on a copy that must not report).
 // Covariance: accumulated F over IMU samples, propagated at most every options.cov_period_s and at every
 // measurement with Phi = I + F T + (F T)^2 / 2, exploiting the nav / effect block structure.
 #include <cstdint>
@@ -23,6 +28,8 @@
 #include "estimator/options.hpp"
 #include "estimator/state/state_layout.hpp"
 #include "estimator/update/measurement.hpp"
+#include "estimator/update/observation.hpp"
+#include "estimator/update/updater.hpp"
 #include "estimator/update/zupt.hpp"
 
 namespace ldv::est {
@@ -36,6 +43,8 @@ class NavFilter {
   bool initialized() const { return c_.initialized; }
 
   void add_imu(const ImuIncrement& raw);
+  // An external sensor's reading (GNSS fix, odometer, ...); an invalid one is counted and dropped.
+  void add_observation(ObservationPtr observation);
   void add_gnss(const GnssFix& fix);
 
   const NavState& state() const { return c_.nav; }
@@ -63,13 +72,24 @@ class NavFilter {
   std::vector<InnovationRecord> take_innovations();
   const std::vector<InnovationRecord>& innovations() const { return innovations_; }
   void set_observer(FilterObserver* observer) { observer_ = observer; }
-  double gate_threshold() const { return gate_; }
+  // Chi-square gate of a measurement with `dof` rows (gate_threshold(): the 3-D GNSS one).
+  double gate_threshold(int dof = 3) const;
+  // Where the measurement models linearise now: attitude, compensated rates, the effects' estimates.
+  LinearizationPoint linearization_point() const;
 
  private:
-  struct Fix {
+  struct Event {
     long id;
     double t_apply_s;
-    GnssFix fix;
+    ObservationPtr obs;
+    double t_s() const { return obs->t_s; }
+  };
+  // Measurements of one sensor beyond the gate in a row (the step confirmation).
+  struct RejectRun {
+    SensorName sensor;
+    int count = 0;
+    double first_t_s = 0.0;     // epoch of the first of them
+    Eigen::VectorXd last_y;     // innovation of the last rejection
   };
   // Everything that changes while filtering: copied into snapshots for late measurements.
   struct Core {
@@ -84,18 +104,16 @@ class NavFilter {
     Eigen::Matrix<double, 9, Eigen::Dynamic> acc_B;  // accumulated F_ne * dt
     StaticDetector detector{0.5, 0.05, 0.01};
     Vec3 f_n_smooth_mps2 = Vec3::Zero();  // specific force in n, first-order low pass (window / 4: little lag)
-    double last_zupt_t_s = -1e300;
     double last_gnss_t_s = -1e300;
     double last_health_t_s = -1e300;
-    int consecutive_rejects[3] = {0, 0, 0};   // measurements beyond the gate in a row, per kind
-    double first_reject_t_s[3] = {0, 0, 0};     // epoch of the first of them
-    Vec3 last_rejected_y[3] = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};  // innovation of the last rejection
+    std::vector<RejectRun> reject_runs;  // per sensor
+    std::vector<UpdaterSlot> updaters;   // the IMU-driven aids, with their own small state
     std::uint32_t status = 0;
     double imu_interval_s = 0.0;  // the last regular IMU interval (what one increment normally spans)
     // Factor on the configured IMU white-noise PSDs, adapted from the GNSS position NIS (>= 1: the
     // configuration is the floor). Vibration of an installed IMU is often 10x its datasheet noise.
     double imu_noise_scale = 1.0;
-    std::deque<Fix> applied;  // fixes applied within the history horizon (what a snapshot contains)
+    std::deque<Event> applied;  // readings applied within the history horizon (what a snapshot contains)
   };
 
   void process_imu(const ImuIncrement& raw);
@@ -103,16 +121,17 @@ class NavFilter {
   void coast_over_imu_gap(double t_end_s);
   void adapt_imu_noise(const InnovationRecord& rec);
   void flush_covariance();
-  void apply_gnss(const Fix& fix);
-  void enqueue(const Fix& fix);
+  void run_aids();
+  void apply_event(const Event& event);
+  void enqueue(const Event& event);
   void apply_measurement(const Measurement& m);
+  RejectRun& reject_run(SensorName sensor);
   void correct(const Eigen::VectorXd& dx);
   void rebuild_error_model();
-  LinearizationPoint linearization_point() const;
   void check_health(bool full);
   void reset_covariance();
   void take_snapshot();
-  void rewind_and_apply(const Fix& fix);
+  void rewind_and_apply(const Event& event);
 
   FilterOptions opt_;
   StateLayout layout_;
@@ -121,12 +140,13 @@ class NavFilter {
   std::vector<Triplet> F_ee_;  // effect dynamics, effect-local indices
   Eigen::VectorXd q_c_;
   std::vector<Mat3X> J_gyro_, J_accel_;  // per-block workspaces
-  double gate_ = 0.0;
+  std::vector<double> gates_;  // chi-square gate by dof (index = rows)
+  Mat3 C_b_v_coarse_ = Mat3::Identity();
 
   Core c_;
   Core last_good_;
-  std::deque<Fix> pending_;  // sorted by time tag
-  long next_fix_id_ = 0;
+  std::deque<Event> pending_;  // sorted by time tag
+  long next_event_id_ = 0;
   std::deque<ImuIncrement> imu_history_;
   std::deque<Core> snapshots_;
   bool replaying_ = false;

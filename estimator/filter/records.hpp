@@ -4,27 +4,28 @@
 #include <Eigen/Core>
 
 #include "estimator/effects/effect.hpp"
+#include "estimator/update/sensor_names.hpp"
 
 namespace ldv::est {
-
-const char* measurement_name(MeasurementKind k);
 
 // One measurement's pre-update innovation (predicted minus measured) and its gate decision.
 struct InnovationRecord {
   double t_s = 0.0;  // IMU-time epoch the measurement was applied at
-  MeasurementKind kind = MeasurementKind::kGnssPosition;
-  Vec3 innovation = Vec3::Zero();  // z_hat - z: NED [m] for position, [m/s] for velocities
-  Mat3 S = Mat3::Zero();           // innovation covariance H P H^T + R
+  SensorName sensor = sensors::kGnssPosition;
+  // z_hat - z, one row per measured component: NED [m] for GNSS position, NED [m/s] for GNSS velocity and
+  // ZUPT, vehicle-frame [m/s] for the aids (nhc: lateral, vertical; odometer: forward), body [rad/s] for ZARU.
+  Eigen::VectorXd innovation = Eigen::VectorXd::Zero(3);
+  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(3, 3);  // innovation covariance H P H^T + R
   double nis = 0.0;                // innovation^T S^-1 innovation
   bool accepted = true;
   // The factor on R the update used: 1 within the gate; > 1 for a measurement beyond it that the robust
   // update kept with less weight (its effective S is H P H^T + noise_scale R).
   double noise_scale = 1.0;
-  bool replayed = false;
+  bool replayed = false;  // recomputed while re-processing a late measurement
   // A measurement counts as used when applied with at least a quarter of its weight; beyond that the
   // robust update kept only a trace of it (an outlier), which counts as a gate rejection.
   static constexpr double kMaxNoiseScaleUsed = 4.0;
-  bool used() const { return accepted && noise_scale <= kMaxNoiseScaleUsed; }           // recomputed while re-processing a late measurement
+  bool used() const { return accepted && noise_scale <= kMaxNoiseScaleUsed; }
 };
 
 class FilterObserver {
@@ -34,7 +35,7 @@ class FilterObserver {
   virtual bool wants_matrices() const { return false; }
   // Covariance propagation over (t_s - dt_s, t_s]: P+ = Phi P Phi^T + Qd.
   virtual void on_propagation(double t_s, double dt_s, const Eigen::MatrixXd& Phi, const Eigen::MatrixXd& Qd) {}
-  // A measurement: its record, H (3 x n) and gain K (n x 3; zero when rejected).
+  // A measurement: its record, H (rows x n) and gain K (n x rows; zero when rejected).
   virtual void on_update(const InnovationRecord& r, const Eigen::MatrixXd& H, const Eigen::MatrixXd& K) {}
 };
 

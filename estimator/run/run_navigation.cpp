@@ -217,7 +217,7 @@ RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vecto
           for (; gi < gnss.size() && gnss[gi].t_s <= imu[j].t_s + 0.5; ++gi) trial.add_gnss(gnss[gi]);
           trial.add_imu(imu[j]);
           for (const auto& r : trial.take_innovations())
-            if (r.kind == MeasurementKind::kGnssPosition) cost += std::min(r.nis, 1e6);
+            if (r.sensor == sensors::kGnssPosition) cost += std::min(r.nis, 1e6);
         }
         if (cost < best_cost) {
           best_cost = cost;

@@ -6,17 +6,17 @@ namespace ldv::est {
 
 Measurement gnss_position_measurement(const NavState& s, const LinearizationPoint& lp, const StateLayout& layout,
                                       const GnssFix& fix) {
-  Measurement m;
-  m.kind = MeasurementKind::kGnssPosition;
+  Measurement m(sensors::kGnssPosition, 3, layout.size());
+  m.gnss = true;
+  m.step_block = kPos;
   const Vec3 lever_n = lp.C_b_n * lp.lever_arm_b_m;
   const Geodetic ant = earth::offset_ned(s.pos, lever_n);
   m.y = earth::ned_between(fix.pos, ant) + lp.gnss_position_bias_n_m;
-  m.H = Mat3X::Zero(3, layout.size());
   m.H.middleCols<3>(kPos).setIdentity();
   // C_hat l = (I - [phi x]) C l  =>  d/dphi = [(C l) x]
   m.H.middleCols<3>(kAtt) = skew(lever_n);
   add_effect_columns(layout, lp, m);
-  m.R = fix.pos_std_ned_m.cwiseAbs2().asDiagonal();
+  m.R = Mat3(fix.pos_std_ned_m.cwiseAbs2().asDiagonal());
   adjust_effect_noise(layout, m);
   return m;
 }

@@ -17,13 +17,13 @@
 namespace ldv::est {
 
 struct UpdatePolicy {
-  double gate = 0.0;          // chi-square quantile on the NIS for the measurement's dof
+  double gate = 0.0;          // chi-square quantile on the NIS for the measurement's rows (its dof)
   bool robust = false;        // beyond the gate: down-weight instead of reject
   bool force_accept = false;  // accept in full whatever the NIS (after the caller opened the covariance)
 };
 
 // Fills rec (innovation, S, NIS, decision, noise_scale). When accepted, updates P and returns the
-// error-state estimate in dx; K (n x 3) is written when K_out is given.
+// error-state estimate in dx; K (n x rows) is written when K_out is given.
 bool kalman_update(Eigen::MatrixXd& P, const Measurement& m, const UpdatePolicy& policy, InnovationRecord& rec,
                    Eigen::VectorXd& dx, Eigen::MatrixXd* K_out = nullptr);
 
@@ -31,6 +31,7 @@ bool kalman_update(Eigen::MatrixXd& P, const Measurement& m, const UpdatePolicy&
 // (closed form in the eigenbasis of R^-1/2 H P H^T R^-T/2, solved by bisection in ln lambda).
 // Returns 1 when the NIS is already at or below the target, and a negative number when R is not
 // positive definite.
-double noise_scale_for_nis(const Mat3& HPHt, const Mat3& R, const Vec3& y, double target_nis);
+double noise_scale_for_nis(const Eigen::MatrixXd& HPHt, const Eigen::MatrixXd& R, const Eigen::VectorXd& y,
+                           double target_nis);
 
 }  // namespace ldv::est

@@ -1,5 +1,6 @@
 #pragma once
-// Zero-velocity update: when the static detector fires, the IMU velocity is zero (z = 0, y = v_hat).
+// Zero-velocity update: when the static detector fires, the IMU velocity is zero (z = 0, y = v_hat); the
+// updater holding its policy (when to trust the detector) is in zupt.cpp (registered as "zupt").
 // StaticDetector: over a sliding window, the std of |f| and the norm of the mean angular rate are
 // both small, against thresholds that include the sensor's own white noise.
 #include <deque>
@@ -27,6 +28,9 @@ class StaticDetector {
   static constexpr size_t kMaxSamples = 1 << 16;
   bool add(double dt_s, const Vec3& omega_ib_b, const Vec3& f_b);
   bool is_static() const { return static_; }
+  // Mean compensated angular rate over the window and the window's length [s] (ZARU).
+  Vec3 mean_rate_rad_s() const { return window_.empty() ? Vec3::Zero() : Vec3(sum_w_ / static_cast<double>(window_.size())); }
+  double window_length_s() const { return sum_dt_s_; }
 
  private:
   struct Sample {

@@ -97,7 +97,7 @@ int main(int argc, char** argv) {
       }
       outs.clear();
       for (const auto& r : engine.filter().take_innovations()) {
-        if (r.t_s <= last_innovation_t && r.kind == ldv::est::MeasurementKind::kGnssPosition) continue;
+        if (r.t_s <= last_innovation_t && r.sensor == ldv::est::sensors::kGnssPosition) continue;
         if (r.replayed && r.t_s <= last_innovation_t) continue;  // already published before a rewind
         rt.bus().publish("NAV_INNOVATION", ldv::innovation_message(r, last_week, innovation_seq++));
         // A GNSS solution the innovation gate refused is rejected input (service_status_t.malformed).

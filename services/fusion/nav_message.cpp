@@ -1,5 +1,8 @@
 #include "services/fusion/nav_message.hpp"
 
+#include <algorithm>
+#include <iterator>
+
 namespace ldv {
 
 ldv_lcm::nav_state_t nav_message(const FusionOutput& o, int64_t seq) {
@@ -23,14 +26,25 @@ ldv_lcm::nav_state_t nav_message(const FusionOutput& o, int64_t seq) {
   return m;
 }
 
+int8_t sensor_code(est::SensorName sensor) {
+  // The codes of nav_innovation_t.sensor; 0 for a sensor that has none yet.
+  constexpr est::SensorName kCodes[] = {est::sensors::kGnssPosition, est::sensors::kGnssVelocity,
+                                        est::sensors::kZeroVelocity, est::sensors::kZeroAngularRate,
+                                        est::sensors::kNonHolonomic, est::sensors::kOdometer};
+  for (size_t i = 0; i < std::size(kCodes); ++i)
+    if (kCodes[i] == sensor) return static_cast<int8_t>(i + 1);
+  return 0;
+}
+
 ldv_lcm::nav_innovation_t innovation_message(const est::InnovationRecord& r, int gps_week, int64_t seq) {
   ldv_lcm::nav_innovation_t m{};
   m.seq = seq;
   m.gps_week = gps_week;
   m.gps_sow_s = r.t_s;
-  m.sensor = static_cast<int8_t>(static_cast<int>(r.kind) + 1);
-  m.dim = 3;
-  for (int i = 0; i < 3; ++i) {
+  m.sensor = sensor_code(r.sensor);
+  const int rows = std::min<int>(3, static_cast<int>(r.innovation.size()));
+  m.dim = static_cast<int8_t>(rows);
+  for (int i = 0; i < rows; ++i) {
     m.innovation[i] = r.innovation[i];
     m.s_diag[i] = r.S(i, i);
   }

@@ -9,6 +9,8 @@
 namespace ldv {
 
 ldv_lcm::nav_state_t nav_message(const FusionOutput& o, int64_t seq);
+// nav_innovation_t.sensor: 1 gnss_position, 2 gnss_velocity, 3 zupt, 4 zaru, 5 nhc, 6 odometer, 0 other.
+int8_t sensor_code(est::SensorName sensor);
 ldv_lcm::nav_innovation_t innovation_message(const est::InnovationRecord& r, int gps_week, int64_t seq);
 
 }  // namespace ldv

@@ -27,7 +27,7 @@ Outcome run(const sim::SimResult& sim, FilterOptions o) {
   RunCallbacks cb;
   double nis_sum = 0.0;
   cb.on_innovation = [&](const InnovationRecord& r) {
-    if (r.kind != MeasurementKind::kGnssPosition) return;
+    if (r.sensor != sensors::kGnssPosition) return;
     ++out.fixes;
     out.used += r.used();
     nis_sum += std::min(r.nis, 100.0);

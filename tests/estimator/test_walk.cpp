@@ -111,7 +111,7 @@ TEST(Walk, AgreesWithRtkFixedAndBoundsOutageDrift) {
   double sh = 0, sv = 0;
   long n = 0, accepted = 0, n_all = 0;
   for (const auto& r : uncut.innovations) {
-    if (r.kind != MeasurementKind::kGnssPosition || r.t_s < uncut.t_start + 10.0) continue;
+    if (r.sensor != sensors::kGnssPosition || r.t_s < uncut.t_start + 10.0) continue;
     ++n_all;
     const auto q = quality.find(std::lround(r.t_s * 1e3));
     if (q == quality.end() || q->second != GnssQuality::kFixed) continue;

@@ -53,7 +53,7 @@ ZuptRun run(const sim::SimResult& s, bool zupt) {
   bool end_taken = false;
   RunCallbacks cb;
   cb.on_innovation = [&](const InnovationRecord& rec) {
-    if (rec.kind == MeasurementKind::kZeroVelocity && rec.accepted)
+    if (rec.sensor == sensors::kZeroVelocity && rec.accepted)
       r.zupt_true_speed_mps.push_back(truth_at(rec.t_s).vel_n_mps.norm());
   };
   cb.on_epoch = [&](const NavFilter& nf) {

@@ -22,14 +22,14 @@ Band mean_band(double value, double expected, double dof, double n_eff, double c
   return b;
 }
 
-std::vector<double> autocorrelation(const std::vector<Vec3>& x, int max_lag) {
+std::vector<double> autocorrelation(const std::vector<Eigen::VectorXd>& x, int max_lag) {
   const int n = static_cast<int>(x.size());
-  Vec3 mean = Vec3::Zero();
-  for (const Vec3& v : x) mean += v;
+  Eigen::VectorXd mean = Eigen::VectorXd::Zero(x.empty() ? 0 : x.front().size());
+  for (const auto& v : x) mean += v;
   mean /= std::max(1, n);
   std::vector<double> acf(max_lag + 1, 0.0);
   double var = 0.0;
-  for (const Vec3& v : x) var += (v - mean).squaredNorm();
+  for (const auto& v : x) var += (v - mean).squaredNorm();
   if (var <= 0.0) return acf;
   for (int l = 0; l <= max_lag; ++l) {
     double c = 0.0;
@@ -51,16 +51,16 @@ bool ModelCheck::consistent() const {
   return true;
 }
 
-const SensorCheck* ModelCheck::find(est::MeasurementKind k) const {
+const SensorCheck* ModelCheck::find(est::SensorName k) const {
   for (const SensorCheck& s : sensors)
-    if (s.kind == k) return &s;
+    if (s.sensor == k) return &s;
   return nullptr;
 }
 
 double log_likelihood(const std::vector<SensitivityRecord>& records) {
   double ll = 0.0;
   for (const SensitivityRecord& r : records) {
-    const Eigen::LLT<Mat3> llt(r.S);
+    const Eigen::LLT<Eigen::MatrixXd> llt(r.S);
     if (llt.info() != Eigen::Success) continue;
     const double log_det = 2.0 * llt.matrixLLT().diagonal().array().log().sum();
     ll += -0.5 * (log_det + r.innovation.dot(llt.solve(r.innovation)));
@@ -71,22 +71,27 @@ double log_likelihood(const std::vector<SensitivityRecord>& records) {
 ModelCheck check_model(const FilterRun& run, const std::vector<Segment>& labels, double confidence) {
   ModelCheck mc;
   mc.loglik = log_likelihood(run.records);
-  for (auto kind : {est::MeasurementKind::kGnssPosition, est::MeasurementKind::kGnssVelocity,
-                    est::MeasurementKind::kZeroVelocity}) {
+  // Every sensor met, GNSS first; rows of a sensor are fixed (the first record's).
+  std::vector<est::SensorName> names = {est::sensors::kGnssPosition, est::sensors::kGnssVelocity, est::sensors::kZeroVelocity};
+  for (const auto& r : run.records)
+    if (std::find(names.begin(), names.end(), r.sensor) == names.end()) names.push_back(r.sensor);
+  for (const est::SensorName kind : names) {
     std::vector<const SensitivityRecord*> rs;
     for (const auto& r : run.records)
-      if (r.kind == kind && std::isfinite(r.nis)) rs.push_back(&r);
+      if (r.sensor == kind && std::isfinite(r.nis) && (rs.empty() || r.innovation.size() == rs.front()->innovation.size()))
+        rs.push_back(&r);
     if (rs.size() < 10) continue;
+    const int rows = static_cast<int>(rs.front()->innovation.size());
     SensorCheck sc;
-    sc.kind = kind;
+    sc.sensor = kind;
     sc.count = static_cast<int>(rs.size());
-    if (kind == est::MeasurementKind::kGnssPosition && rs.size() > 1)
+    if (kind == est::sensors::kGnssPosition && rs.size() > 1)
       mc.measurement_interval_s = (rs.back()->t_s - rs.front()->t_s) / (rs.size() - 1);
-    std::vector<Vec3> w;  // normalised innovations nu_i / sqrt(S_ii)
+    std::vector<Eigen::VectorXd> w;  // normalised innovations nu_i / sqrt(S_ii)
     double nis_sum = 0.0;
-    Vec3 axis_sum = Vec3::Zero(), sq = Vec3::Zero();
+    Eigen::VectorXd axis_sum = Eigen::VectorXd::Zero(rows), sq = Eigen::VectorXd::Zero(rows);
     for (const auto* r : rs) {
-      const Vec3 sd = r->S.diagonal().cwiseSqrt();
+      const Eigen::VectorXd sd = r->S.diagonal().cwiseSqrt();
       w.push_back(r->innovation.cwiseQuotient(sd));
       nis_sum += r->nis;
       axis_sum += w.back().cwiseAbs2();
@@ -112,16 +117,16 @@ ModelCheck check_model(const FilterRun& run, const std::vector<Segment>& labels,
     sc.correlation_time = std::clamp(tau, 1.0, n / 5.0);
     sc.effective_n = n / sc.correlation_time;
     sc.long_run_factor = sc.correlation_time;
-    sc.mean_nis = mean_band(nis_sum / n, 3.0, 3.0, sc.effective_n, confidence);
-    for (int i = 0; i < 3; ++i) sc.axis_nis[i] = mean_band(axis_sum(i) / n, 1.0, 1.0, sc.effective_n, confidence);
+    sc.mean_nis = mean_band(nis_sum / n, rows, rows, sc.effective_n, confidence);
+    for (int i = 0; i < rows; ++i) sc.axis_nis.push_back(mean_band(axis_sum(i) / n, 1.0, 1.0, sc.effective_n, confidence));
 
     // Per manoeuvre segment.
     std::array<SegmentCheck, kSegmentCount> seg;
-    std::array<Vec3, kSegmentCount> seg_sq;
+    std::array<Eigen::VectorXd, kSegmentCount> seg_sq;
     std::array<double, kSegmentCount> seg_nis{};
     for (int s = 0; s < kSegmentCount; ++s) {
       seg[s].segment = static_cast<Segment>(s);
-      seg_sq[s].setZero();
+      seg_sq[s] = Eigen::VectorXd::Zero(rows);
     }
     for (const auto* r : rs) {
       const int s = static_cast<int>(segment_at(run.epochs, labels, r->t_s));
@@ -134,7 +139,7 @@ ModelCheck check_model(const FilterRun& run, const std::vector<Segment>& labels,
       if (seg[s].count == 0) continue;
       const double ns = seg[s].count;
       seg[s].rms = (seg_sq[s] / ns).cwiseSqrt();
-      seg[s].mean_nis = mean_band(seg_nis[s] / ns, 3.0, 3.0, std::max(1.0, ns / sc.correlation_time), confidence);
+      seg[s].mean_nis = mean_band(seg_nis[s] / ns, rows, rows, std::max(1.0, ns / sc.correlation_time), confidence);
       sc.segments.push_back(seg[s]);
     }
     mc.sensors.push_back(std::move(sc));

@@ -20,16 +20,16 @@ struct SegmentCheck {
   Segment segment = Segment::kStraight;
   int count = 0;
   Band mean_nis;          // 3-dof NIS, band from the segment's effective sample size
-  Vec3 rms = Vec3::Zero();  // innovation RMS per axis (NED) [m or m/s]
+  Eigen::VectorXd rms;  // innovation RMS per row (GNSS: N E D) [m, m/s or rad/s]
   int rejected = 0;
 };
 
 struct SensorCheck {
-  est::MeasurementKind kind = est::MeasurementKind::kGnssPosition;
+  est::SensorName sensor = est::sensors::kGnssPosition;
   int count = 0, rejected = 0;
-  Band mean_nis;                   // E[NIS] = 3
-  std::array<Band, 3> axis_nis;    // E[nu_i^2 / S_ii] = 1
-  Vec3 rms = Vec3::Zero();
+  Band mean_nis;                   // E[NIS] = the measurement's rows
+  std::vector<Band> axis_nis;      // per row: E[nu_i^2 / S_ii] = 1
+  Eigen::VectorXd rms;
   std::vector<double> autocorrelation;  // of the normalised innovations (mean over axes), lags 0..
   double ljung_box = 0.0, ljung_box_p = 1.0;
   int ljung_box_lags = 0;
@@ -49,7 +49,7 @@ struct ModelCheck {
   double loglik = 0.0;        // sum of -0.5 (log det S + NIS) over all measurements
   double measurement_interval_s = 1.0;
   bool consistent() const;
-  const SensorCheck* find(est::MeasurementKind k) const;
+  const SensorCheck* find(est::SensorName k) const;
 };
 
 ModelCheck check_model(const FilterRun& run, const std::vector<Segment>& epoch_labels, double confidence = 0.95);

@@ -25,11 +25,11 @@ std::ofstream open(const fs::path& p) {
 
 // Writes t, segment code, N E D innovation, N E D sqrt(S_ii), NIS for one kind of measurement.
 void write_innovations(const fs::path& p, const FilterRun& run, const std::vector<Segment>& labels,
-                       est::MeasurementKind kind) {
+                       est::SensorName kind) {
   std::ofstream f = open(p);
   f << "# t_s segment innov_n innov_e innov_d sqrtS_n sqrtS_e sqrtS_d nis speed_mps yaw_deg yaw_rate_dps f_h_mps2\n";
   for (const SensitivityRecord& r : run.records) {
-    if (r.kind != kind) continue;
+    if (r.sensor != kind) continue;
     auto it = std::upper_bound(run.epochs.begin(), run.epochs.end(), r.t_s + 1e-6,
                                [](double t, const EpochSample& e) { return t < e.t_s; });
     const size_t i = it == run.epochs.begin() ? 0 : static_cast<size_t>(it - run.epochs.begin()) - 1;
@@ -59,8 +59,8 @@ int write_plots(const Diagnosis& d, const std::string& dir_name) {
   const fs::path dir(dir_name);
   fs::create_directories(dir);
   const double t0 = d.before.epochs.empty() ? 0.0 : d.before.epochs.front().t_s;
-  write_innovations(dir / "innov_pos_before.dat", d.before, d.labels_before, est::MeasurementKind::kGnssPosition);
-  write_innovations(dir / "innov_pos_after.dat", d.after, d.labels_after, est::MeasurementKind::kGnssPosition);
+  write_innovations(dir / "innov_pos_before.dat", d.before, d.labels_before, est::sensors::kGnssPosition);
+  write_innovations(dir / "innov_pos_after.dat", d.after, d.labels_after, est::sensors::kGnssPosition);
   int written = 0;
   const std::string term = "set terminal pngcairo size 1400,900 font ',10'\n";
   // The model name comes from the user: inside the titles' literals, as a literal's inner text.

@@ -52,11 +52,11 @@ std::string check_json(const ModelCheck& mc) {
   return list(mc.sensors.size(), [&](size_t i) {
     const SensorCheck& s = mc.sensors[i];
     std::ostringstream o;
-    o << "{\"sensor\": " << str(est::measurement_name(s.kind)) << ", \"count\": " << s.count
+    o << "{\"sensor\": " << str(std::string(s.sensor)) << ", \"count\": " << s.count
       << ", \"rejected\": " << s.rejected << ", \"mean_nis\": " << num(s.mean_nis.value) << ", \"mean_nis_band\": ["
       << num(s.mean_nis.lo) << ", " << num(s.mean_nis.hi) << "], \"axis_nis\": "
-      << list(3, [&](size_t a) { return num(s.axis_nis[a].value); }) << ", \"rms\": "
-      << list(3, [&](size_t a) { return num(s.rms(a)); }) << ", \"ljung_box\": " << num(s.ljung_box)
+      << list(s.axis_nis.size(), [&](size_t a) { return num(s.axis_nis[a].value); }) << ", \"rms\": "
+      << list(static_cast<size_t>(s.rms.size()), [&](size_t a) { return num(s.rms(static_cast<int>(a))); }) << ", \"ljung_box\": " << num(s.ljung_box)
       << ", \"ljung_box_p\": " << num(s.ljung_box_p) << ", \"effective_n\": " << num(s.effective_n)
       << ", \"ok\": " << (s.ok() ? "true" : "false") << ", \"segments\": "
       << list(s.segments.size(), [&](size_t k) {
@@ -94,7 +94,7 @@ std::string candidate_json(const CandidateScore& c) {
 // model under test), its estimate and sigma in that model's run (SI), and how the model then fits the
 // GNSS positions.
 std::string fit_json(const ModelCheck& check) {
-  const SensorCheck* pos = check.find(est::MeasurementKind::kGnssPosition);
+  const SensorCheck* pos = check.find(est::sensors::kGnssPosition);
   const int total = pos ? pos->count : 0, accepted = pos ? pos->count - pos->rejected : 0;
   return "\"accepted_fixes\": " + std::to_string(accepted) + ", \"total_fixes\": " + std::to_string(total) +
          ", \"mean_nis\": " + (pos ? num(pos->mean_nis.value) : std::string("null")) +

@@ -20,17 +20,25 @@ std::string values(const Eigen::VectorXd& v, double scale) {
   return s;
 }
 
+std::string rms_text(const Eigen::VectorXd& rms) {
+  std::string t;
+  for (int i = 0; i < rms.size(); ++i) t += (i ? " " : "") + fmt("%.4f", rms(i));
+  return t;
+}
+
 void print_check(std::ostream& out, const ModelCheck& mc) {
   for (const SensorCheck& s : mc.sensors) {
-    out << "  " << est::measurement_name(s.kind) << ": " << s.count << " measurements, " << s.rejected
+    out << "  " << std::string(s.sensor) << ": " << s.count << " measurements, " << s.rejected
         << " gate rejections; mean NIS " << fmt("%.2f", s.mean_nis.value) << " (band " << fmt("%.2f", s.mean_nis.lo)
         << ".." << fmt("%.2f", s.mean_nis.hi) << ") "
         << (s.optimistic() ? "TOO HIGH (errors larger than the model says)"
                            : s.pessimistic() ? "low (the model is pessimistic: noise larger than needed)" : "ok")
         << "\n";
-    out << "    per axis N E D: " << fmt("%.2f", s.axis_nis[0].value) << " " << fmt("%.2f", s.axis_nis[1].value) << " "
-        << fmt("%.2f", s.axis_nis[2].value) << "; RMS " << fmt("%.4f", s.rms(0)) << " " << fmt("%.4f", s.rms(1)) << " "
-        << fmt("%.4f", s.rms(2)) << "\n";
+    out << "    per row" << (s.axis_nis.size() == 3 && s.sensor.starts_with("gnss") ? " N E D" : "") << ":";
+    for (const Band& b : s.axis_nis) out << " " << fmt("%.2f", b.value);
+    out << "; RMS";
+    for (int i = 0; i < s.rms.size(); ++i) out << " " << fmt("%.4f", s.rms(i));
+    out << "\n";
     out << "    whiteness: lag-1 autocorrelation " << fmt("%.2f", s.autocorrelation.size() > 1 ? s.autocorrelation[1] : 0.0)
         << ", Ljung-Box(" << s.ljung_box_lags << ") " << fmt("%.1f", s.ljung_box) << " p=" << fmt("%.2g", s.ljung_box_p)
         << ", correlation time " << fmt("%.1f", s.correlation_time) << " measurements, effective N "
@@ -38,8 +46,7 @@ void print_check(std::ostream& out, const ModelCheck& mc) {
     for (const SegmentCheck& g : s.segments)
       out << "    " << segment_name(g.segment) << std::string(14 - std::string(segment_name(g.segment)).size(), ' ')
           << fmt("%5.0f", g.count) << "  mean NIS " << fmt("%7.2f", g.mean_nis.value) << (g.mean_nis.ok() ? "   " : " ! ")
-          << " RMS " << fmt("%.4f", g.rms(0)) << " " << fmt("%.4f", g.rms(1)) << " " << fmt("%.4f", g.rms(2))
-          << (g.rejected ? "  rejected " + std::to_string(g.rejected) : std::string()) << "\n";
+          << " RMS " << rms_text(g.rms) << (g.rejected ? "  rejected " + std::to_string(g.rejected) : std::string()) << "\n";
   }
 }
 
@@ -103,7 +110,7 @@ void print_steps(std::ostream& out, const Diagnosis& d) {
   out << "\n5. Step by step (GNSS position fit of each model)\n"
       << "  step  added                 estimate +- sigma                          used / fixes  mean NIS  RMS N E D [m]\n";
   auto fit = [&](const ModelCheck& check) {
-    const SensorCheck* pos = check.find(est::MeasurementKind::kGnssPosition);
+    const SensorCheck* pos = check.find(est::sensors::kGnssPosition);
     if (!pos) return std::string();
     return fmt("%5.0f", static_cast<double>(pos->count - pos->rejected)) + " / " +
            fmt("%-5.0f", static_cast<double>(pos->count)) + "  " + fmt("%8.2f", pos->mean_nis.value) + "  " +

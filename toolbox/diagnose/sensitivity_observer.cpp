@@ -2,7 +2,7 @@
 
 #include "common/geo/earth_model.hpp"
 #include "estimator/state/state_layout.hpp"
-#include "estimator/update/gnss_velocity.hpp"
+#include "estimator/update/gyro_coupling.hpp"
 
 namespace ldv::diag {
 
@@ -13,7 +13,7 @@ using est::Mat3X;
 SensitivityRecord SensitivityRecord::from(const est::InnovationRecord& r) {
   SensitivityRecord rec;
   rec.t_s = r.t_s;
-  rec.kind = r.kind;
+  rec.sensor = r.sensor;
   rec.innovation = r.innovation;
   rec.S = r.S;
   rec.nis = r.nis;
@@ -73,33 +73,22 @@ void SensitivityObserver::on_propagation(double, double, const Eigen::MatrixXd& 
 void SensitivityObserver::on_update(const est::InnovationRecord& r, const Eigen::MatrixXd& H,
                                     const Eigen::MatrixXd& K) {
   // Linearisation point at the measurement epoch (the state was just corrected: a negligible change).
-  const est::NavState& s = filter_.state();
-  const est::MechanizationStep& st = filter_.last_step();
-  est::LinearizationPoint lp;
-  lp.C_b_n = s.C_b_n();
-  lp.omega_ib_b_rad_s = st.omega_ib_b_rad_s;
-  lp.f_b_mps2 = st.f_b_mps2;
-  lp.a_n_mps2 = st.a_n_mps2;
-  lp.lever_arm_b_m = filter_.error_model().lever_arm_b_m;
-  lp.omega_in_n_rad_s = earth::omega_ie_n(s.pos.lat_rad) + earth::omega_en_n(s.pos.lat_rad, s.pos.h_m, s.v_n_mps);
-  lp.v_ant_n_mps = est::antenna_velocity_n(s, lp);
-
+  const est::LinearizationPoint lp = filter_.linearization_point();
   SensitivityRecord rec = SensitivityRecord::from(r);
-  rec.s = H * Psi_;  // 3 x P
-  const bool velocity = r.kind == est::MeasurementKind::kGnssVelocity;
-  const Mat3 dv_dw = -lp.C_b_n * skew(lp.lever_arm_b_m);  // a gyro error moves the antenna
+  rec.s = H * Psi_;  // rows x P
+  const Eigen::MatrixXd G = est::gyro_error_coupling(r.sensor, lp);  // a gyro error enters directly
   for (const Candidate& c : set_.candidates) {
     const est::Effect& e = *c.effect;
-    if (e.enters(r.kind)) {
-      Mat3X Hc = Mat3X::Zero(3, c.dim);
-      e.measurement_jacobian(r.kind, lp, Hc);
+    if (e.enters(r.sensor)) {
+      Eigen::MatrixXd Hc = Eigen::MatrixXd::Zero(H.rows(), c.dim);
+      e.measurement_jacobian(r.sensor, lp, Hc);
       rec.s.middleCols(c.column, c.dim) += Hc;
     }
-    if (velocity && e.drives_gyro()) {
+    if (G.rows() > 0 && e.drives_gyro()) {
       J_gyro_ = Mat3X::Zero(3, c.dim);
       J_accel_ = Mat3X::Zero(3, c.dim);
       e.imu_jacobians(lp, J_gyro_, J_accel_);
-      rec.s.middleCols(c.column, c.dim) += dv_dw * J_gyro_;
+      rec.s.middleCols(c.column, c.dim) += G * J_gyro_;
     }
   }
   if (r.accepted) Psi_.noalias() -= K * rec.s;

@@ -18,13 +18,13 @@ namespace ldv::diag {
 // One measurement as the diagnosis needs it: pre-gate innovation, its covariance, and its sensitivity.
 struct SensitivityRecord {
   double t_s = 0.0;
-  est::MeasurementKind kind = est::MeasurementKind::kGnssPosition;
-  Vec3 innovation = Vec3::Zero();  // z_hat - z
-  Mat3 S = Mat3::Identity();
+  est::SensorName sensor = est::sensors::kGnssPosition;
+  Eigen::VectorXd innovation;  // z_hat - z, the measurement's rows
+  Eigen::MatrixXd S;
   double nis = 0.0;
   bool accepted = true;  // applied to the state (the robust update may apply an outlier with a trace of weight)
   bool used = true;      // applied with at least a quarter of its weight (est::InnovationRecord::used)
-  Eigen::Matrix<double, 3, Eigen::Dynamic> s;  // d(innovation)/d(e), 3 x P
+  Eigen::MatrixXd s;  // d(innovation)/d(e), rows x P
 
   // The filter's record of a measurement, without sensitivities.
   static SensitivityRecord from(const est::InnovationRecord& r);

@@ -129,9 +129,10 @@ class NavOutputs {
 
   void innovation(const est::InnovationRecord& r) {
     innov_.num(r.t_s, 4);
-    innov_.text(est::measurement_name(r.kind));
-    for (int i = 0; i < 3; ++i) innov_.num(r.innovation(i), 5);
-    for (int i = 0; i < 3; ++i) innov_.num(std::sqrt(r.S(i, i)), 5);
+    innov_.text(std::string(r.sensor).c_str());
+    // Three columns whatever the sensor's rows (the aids have 1-3; missing ones are written as 0).
+    for (int i = 0; i < 3; ++i) innov_.num(i < r.innovation.size() ? r.innovation(i) : 0.0, 5);
+    for (int i = 0; i < 3; ++i) innov_.num(i < r.innovation.size() ? std::sqrt(r.S(i, i)) : 0.0, 5);
     innov_.num(r.nis, 3);
     innov_.num(r.used() ? 1 : 0, 0);  // used: an outlier the robust update kept a trace of counts as rejected
     innov_.end_line();
