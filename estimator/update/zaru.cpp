@@ -3,7 +3,8 @@
 // y = mean(w_ib_b) - C_n_b w_ie_n, z = 0. It observes the gyro biases directly, the yaw one included, which
 // GNSS alone sees only through turns. Noise: the gyro white noise averaged over the window (as installed:
 // times the filter's noise scale) plus aids.zaru_std_rad_s for what the detector lets through.
-//   d y / d dx = J_gyro (gyro-driven effects);  d y / d phi = -C_n_b [w_ie_n x] (C_n_b_hat = C_n_b (I + [phi x])).
+//   d y / d dx = J_gyro (gyro-driven effects);  d y / d phi = C_n_b [w_ie_n x] (C_n_b_hat = C_n_b (I + [phi x]));
+//   the earth rate's change with latitude (1e-11 rad/s per metre) is left out.
 #include <cmath>
 
 #include "common/geo/earth_model.hpp"
@@ -29,7 +30,7 @@ class ZaruUpdater final : public Updater {
     const Vec3 w_ie_n = earth::omega_ie_n(c.nav.pos.lat_rad);
     Measurement m(sensors::kZeroAngularRate, 3, c.layout.size());
     m.y = c.detector.mean_rate_rad_s() - C_n_b * w_ie_n;
-    m.H.middleCols<3>(kAtt) = -C_n_b * skew(w_ie_n);
+    m.H.middleCols<3>(kAtt) = C_n_b * skew(w_ie_n);
     add_gyro_error_columns(c.layout, c.lp, m);
     add_effect_columns(c.layout, c.lp, m);
     const Vec3 white_var = c.options.arw_rad_per_sqrt_s.cwiseAbs2() * (c.imu_noise_scale / window_s);
