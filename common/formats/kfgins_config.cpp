@@ -92,6 +92,9 @@ const std::vector<std::string> kLdvKeys = {
     "model", "add", "drop", "cov_period_s", "gate_probability", "kfgins_compatible", "step_confirm_s",
     "adapt_imu_noise", "use_gnss_velocity", "zupt", "history_s", "align_speed_mps", "align_hypotheses",
     "gnss_bias_sigma_m", "gnss_bias_tau_s", "time_offset_s",
+    // land-vehicle aids (estimator/options.hpp AidOptions)
+    "aids", "vehicle_mounting_deg", "nhc_std_mps", "odometer_std_mps", "odometer_lever_arm_m", "odometer_scale",
+    "odopath",
     // inputs
     "week", "pos_height_offset_m", "float_std_min_m", "imu_time_shift_s", "imu_latency", "calibration",
     // written by `ldv sim` (its truth and settings, for the record)
@@ -116,6 +119,10 @@ void refuse_unknown_keys(const std::string& path, const YAML::Node& root) {
 }
 
 }  // namespace
+
+bool has_ldv_key(const KfGinsConfig& cfg, const char* key) {
+  return cfg.ldv.IsDefined() && cfg.ldv.IsMap() && cfg.ldv[key];
+}
 
 KfGinsConfig load_kfgins_config(const std::string& path) {
   YAML::Node root;

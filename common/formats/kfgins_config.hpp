@@ -54,6 +54,9 @@ struct KfGinsConfig {
 // beside the configuration file when there, else as given (so an error names it as the user wrote it).
 std::string resolve_data_path(const std::string& path, const std::string& config_path);
 
+// Whether the configuration's `ldv:` section sets `key` (then the user's value wins over what the data say).
+bool has_ldv_key(const KfGinsConfig& cfg, const char* key);
+
 // Throws InputError naming the file and key on a missing required key or a value of the wrong type.
 // Relative data paths are resolved against the working directory first (as KF-GINS does), then
 // against the configuration file's directory.

@@ -64,6 +64,24 @@ FilterOptions options_from_kfgins(const KfGinsConfig& cfg) {
   // The time_offset effect's prior mean [s] (GNSS tag minus IMU tag), e.g. from `ldv diagnose --write-config`.
   o.time_offset_init_s = ldv_key<double>(cfg, "time_offset_s", o.time_offset_init_s);
   o.zupt.enabled = ldv_key<bool>(cfg, "zupt", o.zupt.enabled);
+  o.aids.enabled = ldv_key<std::vector<std::string>>(cfg, "aids", o.aids.enabled);
+  for (const std::string& aid : o.aids.enabled)
+    if (aid != "nhc" && aid != "zaru" && aid != "odometer")
+      throw InputError(cfg.config_path, cfg.ldv["aids"].Mark().line + 1,
+                       "key 'ldv.aids': unknown aid '" + aid + "' (expected nhc, zaru, odometer)");
+  const auto vec3_key = [&](const char* key, Vec3 fallback, double scale) -> Vec3 {
+    if (!has_ldv_key(cfg, key)) return fallback;
+    const auto v = ldv_key<std::vector<double>>(cfg, key, {});
+    if (v.size() != 3 || !std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
+      throw InputError(cfg.config_path, cfg.ldv[key].Mark().line + 1,
+                       std::string("key 'ldv.") + key + "': expected a list of 3 finite numbers");
+    return Vec3(v[0], v[1], v[2]) * scale;
+  };
+  o.aids.mounting_rpy_rad = vec3_key("vehicle_mounting_deg", o.aids.mounting_rpy_rad, kDegToRad);
+  o.odometer_lever_arm.init = vec3_key("odometer_lever_arm_m", o.odometer_lever_arm.init, 1.0);
+  o.aids.nhc_std_mps = ldv_key<double>(cfg, "nhc_std_mps", o.aids.nhc_std_mps);
+  o.aids.odometer_std_mps = ldv_key<double>(cfg, "odometer_std_mps", o.aids.odometer_std_mps);
+  o.odometer_scale_init = ldv_key<double>(cfg, "odometer_scale", o.odometer_scale_init);
   o.history_s = ldv_key<double>(cfg, "history_s", 0.0);  // offline: fixes are never late
   o.align_speed_mps = ldv_key<double>(cfg, "align_speed_mps", o.align_speed_mps);
   o.align_hypotheses = ldv_key<int>(cfg, "align_hypotheses", o.robust_update ? o.align_hypotheses : 1);
@@ -159,7 +177,7 @@ double initialisation_epoch(const std::vector<ImuIncrement>& imu, const std::vec
 
 RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
                           const KfGinsConfig& cfg, NavFilter& filter, const RunCallbacks& cb,
-                          const AlignmentOptions* alignment) {
+                          const AlignmentOptions* alignment, const std::vector<ObservationPtr>* others) {
   RunSummary sum;
   const double t0 = cfg.start_time_s, t1 = cfg.end_time_s < 0 ? 1e300 : cfg.end_time_s;
   size_t i = first_imu_index(imu, cfg);
@@ -242,6 +260,10 @@ RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vecto
   sum.gyro_bias_seed_rad_s = gyro_bias_seed;
   // Fixes before the initial epoch are not used.
   while (g < gnss.size() && gnss[g].t_s <= filter.state().t_s) ++g;
+  const std::vector<ObservationPtr> no_others;
+  const std::vector<ObservationPtr>& other = others ? *others : no_others;
+  size_t o = 0;
+  while (o < other.size() && other[o]->t_s <= filter.state().t_s) ++o;
 
   const size_t n_total = imu.size();
   const size_t progress_step = std::max<size_t>(1, n_total / 50);
@@ -250,6 +272,10 @@ RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vecto
     for (; g < gnss.size() && gnss[g].t_s <= imu[i].t_s + 0.5; ++g) {
       filter.add_gnss(gnss[g]);
       ++sum.gnss_fixes;
+    }
+    for (; o < other.size() && other[o]->t_s <= imu[i].t_s + 0.5; ++o) {
+      filter.add_observation(other[o]);
+      ++sum.other_observations;
     }
     filter.add_imu(imu[i]);
     ++sum.imu_samples;

@@ -15,7 +15,9 @@ namespace ldv::est {
 // init biases/scales and their std, antlever; plus the optional `ldv:` section keys
 //   model, add [list], drop [list], cov_period_s, gate_probability, use_gnss_velocity, zupt (bool),
 //   history_s, gnss_bias_sigma_m (number or [N, E, D]), gnss_bias_tau_s, align_speed_mps,
-//   align_hypotheses. Throws InputError (file, key) on a wrong type.
+//   align_hypotheses, and the land-vehicle aids: aids [nhc, zaru, odometer], vehicle_mounting_deg
+//   [roll, pitch, yaw] (coarse IMU-in-vehicle rotation), nhc_std_mps, odometer_std_mps,
+//   odometer_lever_arm_m [x, y, z] (body axes), odometer_scale. Throws InputError (file, key) on a wrong type.
 FilterOptions options_from_kfgins(const KfGinsConfig& cfg);
 // A number from the `ldv:` section, or `fallback` when absent; InputError (file, line, key) on a wrong type.
 double ldv_number(const KfGinsConfig& cfg, const char* key, double fallback);
@@ -27,7 +29,7 @@ struct RunCallbacks {
 };
 
 struct RunSummary {
-  long imu_samples = 0, gnss_fixes = 0;
+  long imu_samples = 0, gnss_fixes = 0, other_observations = 0;
   double t_start_s = 0.0, t_end_s = 0.0;
   std::string initialisation;  // "given", or the alignment method
   Vec3 gyro_bias_seed_rad_s = Vec3::Zero();  // turn-on bias from the static start, taken out (alignment.hpp)
@@ -42,10 +44,12 @@ struct RunSummary {
 // cfg.init_pos/init_vel/init_rpy when all three are given (at the first IMU epoch >= start time), else
 // the data are aligned (alignment.hpp). Feeds each fix before the IMU reaches it, so it is applied at its
 // exact epoch. Throws InputError if alignment never succeeds. `alignment`: settings of the alignment without
-// a given state (default: alignment_options_from(filter.options())).
+// a given state (default: alignment_options_from(filter.options())). `others`: readings of other sensors
+// (odometer, ...) in time order, fed like the fixes.
 RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
                           const KfGinsConfig& cfg, NavFilter& filter, const RunCallbacks& callbacks,
-                          const AlignmentOptions* alignment = nullptr);
+                          const AlignmentOptions* alignment = nullptr,
+                          const std::vector<ObservationPtr>* others = nullptr);
 
 // The epoch run_navigation() will start the filter at: the given state's, or where the alignment from the data
 // succeeds (the same aligner, without its heading trials). Throws as run_navigation() does.

@@ -15,7 +15,8 @@ Eigen::Matrix<double, 9, 1> nav_error(const NavState& s, const sim::TruthSample&
   return e;
 }
 
-Accuracy evaluate(const sim::SimResult& sim, FilterOptions options, double settle_s) {
+Accuracy evaluate(const sim::SimResult& sim, FilterOptions options, double settle_s,
+                  const std::vector<ObservationPtr>& others) {
   NavFilter filter(options);
   const double t0 = sim.truth.front().t_s, dt = 1.0 / sim.request.imu_rate_hz;
   const std::vector<sim::Outage>& outages = sim.request.outages;
@@ -55,7 +56,7 @@ Accuracy evaluate(const sim::SimResult& sim, FilterOptions options, double settl
   };
   KfGinsConfig cfg = sim.kfgins;
   cfg.end_time_s = -1;
-  const RunSummary sum = run_navigation(sim.imu, sim.gnss, cfg, filter, cb);
+  const RunSummary sum = run_navigation(sim.imu, sim.gnss, cfg, filter, cb, nullptr, &others);
   acc.samples = n;
   acc.horiz_rms_m = std::sqrt(sh / n);
   acc.vert_rms_m = std::sqrt(sv / n);

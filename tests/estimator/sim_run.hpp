@@ -22,6 +22,8 @@ Eigen::Matrix<double, 9, 1> nav_error(const NavState& s, const sim::TruthSample&
 
 // Runs `options` on `sim` (initial state from the simulator's KF-GINS config, i.e. truth with its std)
 // and returns the errors, evaluated after `settle_s`.
-Accuracy evaluate(const sim::SimResult& sim, FilterOptions options, double settle_s = 60.0);
+// `others`: readings of other sensors (odometer) fed with the fixes.
+Accuracy evaluate(const sim::SimResult& sim, FilterOptions options, double settle_s = 60.0,
+                  const std::vector<ObservationPtr>& others = {});
 
 }  // namespace ldv::est::test

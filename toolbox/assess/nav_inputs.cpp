@@ -17,11 +17,6 @@
 namespace ldv::assess {
 namespace {
 
-// Whether the configuration's `ldv:` section sets `key` (then the user's value wins over what the data say).
-bool has_ldv_key(const KfGinsConfig& cfg, const char* key) {
-  return cfg.ldv.IsDefined() && cfg.ldv.IsMap() && cfg.ldv[key];
-}
-
 Vec3 remap(const Vec3& v, const std::vector<int>& axes) {
   Vec3 out;
   for (int i = 0; i < 3; ++i) out(i) = (axes[i] > 0 ? 1.0 : -1.0) * v(std::abs(axes[i]) - 1);
@@ -121,6 +116,7 @@ NavInputs load_nav_model(const NavInputArgs& a) {
     in.options.adapt_imu_noise = false;
     if (!has_ldv_key(in.config, "align_hypotheses")) in.options.align_hypotheses = 1;
   }
+  if (!a.aids.empty()) in.options.aids.enabled = a.aids;
   if (!a.model.empty()) in.options.model = a.model;
   in.options.add.insert(in.options.add.end(), a.add.begin(), a.add.end());
   in.options.drop.insert(in.options.drop.end(), a.drop.begin(), a.drop.end());

@@ -25,6 +25,7 @@
 #include "estimator/calibrate/imu_latency.hpp"
 #include "common/io/dropped_records.hpp"
 #include "estimator/options.hpp"
+#include "estimator/update/observation.hpp"
 
 namespace ldv::assess {
 
@@ -51,6 +52,10 @@ struct NavInputArgs {
   // --strict: an input file that loses more than kMaxDroppedFraction of its records (or an IMU with a gap
   // longer than kMaxImuGap_s) is an error (InputError) instead of a warning.
   bool strict = false;
+  // Land-vehicle aids (estimator/options.hpp AidOptions): replace ldv.aids when given; the odometer file
+  // replaces ldv.odopath.
+  std::vector<std::string> aids;
+  std::string odometer;
 };
 
 // What the readers kept and dropped of one input file (printed by `ldv nav`).
@@ -85,6 +90,8 @@ struct NavInputs {
   std::string gnss_velocity_note;
   std::vector<InputFileCounts> file_counts;  // IMU then GNSS
   std::vector<ImuTimeGap> imu_gaps;          // IMU intervals > 10 median intervals (kept: the estimator decides)
+  // Readings of the other sensors (odometer with --aid odometer), in time order: run_navigation's `others`.
+  std::vector<est::ObservationPtr> other_observations;
 };
 
 // One line per input file ("IMU imu.txt: 1000 kept, 3 dropped: 3 wrong column count (first: ...)").

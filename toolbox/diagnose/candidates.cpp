@@ -26,7 +26,18 @@ const Screenable kScreenable[] = {
     {"gravity_anomaly", 2e-3},                // 200 mGal
     {"gyro_bias", 1000.0 * kDegH},            // only when dropped from the model
     {"accel_bias", 0.1},
+    // Seen only through the land-vehicle aids (screened when the aid is on).
+    {"vehicle_mounting", 0.1},                // rad (6 deg beyond the coarse mounting)
+    {"odometer_scale", 0.05},                 // 5 %
+    {"odometer_lever_arm", 3.0},              // m
 };
+
+// The aid an effect needs to be seen at all (nullptr: GNSS sees it).
+const char* aid_needed(const std::string& name) {
+  if (name == "vehicle_mounting") return "nhc";
+  if (name == "odometer_scale" || name == "odometer_lever_arm") return "odometer";
+  return nullptr;
+}
 
 }  // namespace
 
@@ -40,6 +51,8 @@ est::BlockOptions* block_options(est::FilterOptions& o, const std::string& name)
   if (name == "g_sensitivity") return &o.g_sensitivity;
   if (name == "lever_arm") return &o.lever_arm;
   if (name == "gravity_anomaly") return &o.gravity_anomaly;
+  if (name == "vehicle_mounting") return &o.vehicle_mounting;
+  if (name == "odometer_lever_arm") return &o.odometer_lever_arm;
   return nullptr;
 }
 
@@ -48,6 +61,11 @@ void set_prior(est::FilterOptions& o, const std::string& name, const Eigen::Vect
   if (name == "time_offset") {
     o.time_offset_init_s = value_si(0);
     o.time_offset_std_s = std_si(0);
+    return;
+  }
+  if (name == "odometer_scale") {
+    o.odometer_scale_init = value_si(0);
+    o.odometer_scale_std = std_si(0);
     return;
   }
   if (est::BlockOptions* b = block_options(o, name)) {
@@ -61,6 +79,8 @@ CandidateSet make_candidates(const est::FilterOptions& options, const std::vecto
   const est::EffectRegistry& reg = est::effect_registry();
   for (const Screenable& s : kScreenable) {
     if (std::find(model_effects.begin(), model_effects.end(), s.name) != model_effects.end()) continue;
+    const char* aid = aid_needed(s.name);
+    if (aid && !(options.aids.has(aid) || (std::string(aid) == "nhc" && options.aids.has("odometer")))) continue;
     Candidate c;
     c.name = s.name;
     c.effect = reg.make(s.name, options);
@@ -72,6 +92,9 @@ CandidateSet make_candidates(const est::FilterOptions& options, const std::vecto
     // Outside the model the filter still applies the configured lever arm and time offset.
     if (c.name == "lever_arm") c.assumed_si = options.lever_arm.init;
     if (c.name == "time_offset") c.assumed_si(0) = options.time_offset_init_s;
+    if (c.name == "vehicle_mounting") c.assumed_si = options.vehicle_mounting.init;
+    if (c.name == "odometer_lever_arm") c.assumed_si = options.odometer_lever_arm.init;
+    if (c.name == "odometer_scale") c.assumed_si(0) = options.odometer_scale_init;
     c.plausible_si = Eigen::VectorXd::Constant(c.dim, s.plausible_si);
     set.columns += c.dim;
     set.candidates.push_back(std::move(c));

@@ -32,7 +32,7 @@ FilterRun run_filter(const DiagnoseInputs& in, const est::FilterOptions& options
   };
   if (!observer)
     cb.on_innovation = [&](const est::InnovationRecord& r) { run.records.push_back(SensitivityRecord::from(r)); };
-  run.summary = est::run_navigation(in.imu, in.gnss, in.cfg, filter, cb);
+  run.summary = est::run_navigation(in.imu, in.gnss, in.cfg, filter, cb, nullptr, &in.others);
   if (observer) run.records = observer->records();
 
   const Eigen::VectorXd sd = filter.covariance().diagonal().cwiseSqrt();

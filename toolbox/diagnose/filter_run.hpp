@@ -20,6 +20,7 @@ struct DiagnoseInputs {
   std::vector<GnssFix> gnss;
   KfGinsConfig cfg;
   std::vector<NavRecord> truth;  // optional (IMU centre, as truth.nav)
+  std::vector<est::ObservationPtr> others;  // other sensors' readings (odometer), time order
 };
 
 struct EpochSample {

@@ -84,6 +84,7 @@ void run_diagnose(const DiagnoseArgs& a) {
   in.cfg = loaded.config;
   in.imu = std::move(loaded.imu);
   in.gnss = std::move(loaded.gnss);
+  in.others = std::move(loaded.other_observations);
   diag::DiagnoseOptions opt;
   // The model under test: --model, else ldv.model, else the KF-GINS equivalent (kfgins21).
   opt.model = loaded.options;

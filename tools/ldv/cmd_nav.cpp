@@ -303,7 +303,7 @@ void run_nav(const NavArgs& a) {
   if (show_progress)
     cb.on_progress = [](double done) { std::fprintf(stderr, "\rldv nav: %3.0f %%", done * 100.0); };
 
-  const est::RunSummary sum = est::run_navigation(in.imu, in.gnss, in.config, *filter, cb, &ao);
+  const est::RunSummary sum = est::run_navigation(in.imu, in.gnss, in.config, *filter, cb, &ao, &in.other_observations);
   out.close();
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
   if (show_progress) std::fprintf(stderr, "\r");

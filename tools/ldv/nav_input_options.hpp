@@ -40,6 +40,12 @@ inline void add_nav_input_options(CLI::App* c, assess::NavInputArgs& in, bool co
   c->add_flag("--kfgins-compatible", in.kfgins_compatible,
               "KF-GINS's measurement gate (reject beyond it, force after 10 rejections) instead of the robust update "
               "(default ldv.kfgins_compatible, else off)");
+  c->add_option("--aid", in.aids,
+                "land-vehicle aid (repeatable): nhc (non-holonomic constraint), zaru (zero angular rate at stops), "
+                "odometer (wheel speed from --odometer or ldv.odopath); default ldv.aids, else none")
+      ->check(CLI::IsMember({"nhc", "zaru", "odometer"}));
+  c->add_option("--odometer", in.odometer,
+                "odometer speeds: text file, one line per reading 'sow speed_mps' (default ldv.odopath)");
   c->add_flag("--strict", in.strict,
               "refuse inputs that drop more than 2 % of a file's records or hold an IMU gap over 1 s (default: a "
               "warning)");
