@@ -27,9 +27,10 @@ VehicleVibration::VehicleVibration(const VehicleRealism& r, const ImuGrade& grad
 }
 
 void VehicleVibration::antiderivatives(double omega, Vec3& vel_v, Vec3& angle_v) const {
+  const double u = std::min(t_ / kRampUp_s, 1.0), ramp = u * u * u * (10.0 + u * (-15.0 + 6.0 * u));
   for (int i = 0; i < 3; ++i) {
-    vel_v[i] = -accel_amp_v_[i] / omega * std::cos(phase_ + accel_phase_[i]);
-    angle_v[i] = -gyro_amp_v_[i] / omega * std::cos(phase_ + gyro_phase_[i]);
+    vel_v[i] = -ramp * accel_amp_v_[i] / omega * std::cos(phase_ + accel_phase_[i]);
+    angle_v[i] = -ramp * gyro_amp_v_[i] / omega * std::cos(phase_ + gyro_phase_[i]);
   }
 }
 
@@ -37,6 +38,7 @@ void VehicleVibration::add(ImuIncrement& inc, double speed_end) {
   // The frequency follows the speed; the phase advances by its mean over the interval.
   const double omega = 2.0 * kPi * law().hz_at(speed_end);
   phase_ = std::fmod(phase_ + 0.5 * (omega_prev_ + omega) * dt_, 2.0 * kPi);
+  t_ += dt_;
   omega_prev_ = omega;
   Vec3 vel_v, angle_v;
   antiderivatives(omega, vel_v, angle_v);

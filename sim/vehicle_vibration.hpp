@@ -7,7 +7,9 @@
 //    accel a_i(t) = A_i sin(phi(t) + phi_i), rate w_i(t) = G_i sin(phi(t) + psi_i). Each increment is the
 //    exact integral over the IMU interval, the difference of the antiderivative -A_i/omega cos(..) at its
 //    ends, so the sampled sensor aliases the harmonic as a real one does and the sum of the increments
-//    stays bounded (|sum| <= 2 A / omega): zero mean, no bias in the navigation.
+//    stays bounded (|sum| <= 2 A / omega). The amplitude ramps up over the first second (smootherstep), so
+//    the antiderivative starts at zero and the velocity and attitude errors it causes have zero mean:
+//    no bias in the navigation.
 #include <cstdint>
 
 #include "common/formats/nav_types.hpp"
@@ -33,11 +35,12 @@ class VehicleVibration {
   const Vec3& accel_amplitude_v() const { return accel_amp_v_; }
   const Vec3& gyro_amplitude_v() const { return gyro_amp_v_; }
   static EngineFrequencyLaw law() { return {}; }
+  static constexpr double kRampUp_s = 1.0;  // the engine harmonic's amplitude ramp at the start
 
  private:
   void antiderivatives(double omega, Vec3& vel_v, Vec3& angle_v) const;
   Mat3 C_v_b_;
-  double dt_;
+  double dt_, t_ = 0.0;
   Vec3 white_gyro_, white_accel_;  // added densities, body axes [u/sqrt(s)]
   Vec3 accel_amp_v_, gyro_amp_v_;
   Vec3 accel_phase_, gyro_phase_;
