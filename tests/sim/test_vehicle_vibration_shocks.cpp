@@ -241,7 +241,7 @@ TEST(SimShocks, EachBumpPeaksAsDrawnAndAStrapdownReturnsToTheTruthAfterIt) {
     // the body really turned during the bump (peak angle ~ rate / omega),
     EXPECT_GT(peak_angle, 0.5 * std::abs(e.pitch_rate_peak_rad_s) / e.omega_rad_s());
     // and after it the strapdown is back on the smooth truth: attitude and velocity within second-order
-    // terms of the < 0.02 rad excursion (without the rotation of the specific force by the bump's angle the
+    // terms of the < 0.025 rad excursion (without the rotation of the specific force by the bump's angle the
     // velocity would be off by g * integral(angle) ~ 5e-3 m/s).
     EXPECT_LT(Eigen::AngleAxisd(Ce.transpose() * Cw).angle(), 5e-6) << e.t_start_s;
     EXPECT_LT((vw - ve).norm(), 5e-4) << e.t_start_s;
