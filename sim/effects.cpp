@@ -44,6 +44,7 @@ const std::vector<EffectInfo>& effect_table() {
       {"accel_moving_bias", {5}, {"mg", "mg", "s", "m/s/h/sqrt(h)", "m/s/h^2"},
        {kMg, kMg, 1.0, 1.0 / 3600.0 / 60.0, 1.0 / 3600.0 / 3600.0}, {0.2, 0.05, 600.0, 0.02, 0.02},
        "per axis: constant, Gauss-Markov sigma B, its time constant, rate random walk K, ramp R"},
+      {"odometer_scale", {1}, {"%"}, {0.01}, {0.5}, "odometer scale-factor error: speed x (1 + s)"},
   };
   return table;
 }

@@ -1,5 +1,6 @@
 #include "sim/gnss_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/geo/earth_model.hpp"
@@ -73,6 +74,7 @@ GnssRun simulate_gnss(const MotionProfile& m, const std::vector<TruthSample>& tr
                       const GnssErrorLevel& level, const GnssSchedule& sch, uint64_t seed) {
   GnssRun run;
   Rng white(seed, "gnss_white"), colored(seed, "gnss_colored"), latency(seed, "gnss_latency");
+  Rng outliers(seed, "gnss_outliers");
   const double t0_sow = truth.front().t_s;
   const double t_end = truth.back().t_s - t0_sow;
   const double period = 1.0 / sch.rate_hz;
@@ -101,6 +103,13 @@ GnssRun simulate_gnss(const MotionProfile& m, const std::vector<TruthSample>& tr
       }
     const double lat_s = sch.with_noise ? sch.latency_mean_s + sch.latency_jitter_s * (2.0 * latency.uniform() - 1.0)
                                         : sch.latency_mean_s;
+    // Drawn every epoch (outages too), so the jumps fall on the same epochs whatever else changes.
+    Vec3 jump = Vec3::Zero();
+    if (sch.outlier_rate > 0.0) {
+      const double u = outliers.uniform(), size_m = 1.0 + 2.0 * outliers.uniform();
+      Vec3 dir(outliers.normal(), outliers.normal(), outliers.normal());
+      if (u < sch.outlier_rate && dir.norm() > 0.0) jump = size_m * dir.normalized();
+    }
     const double t_label_sow = static_cast<double>(j) / sch.rate_hz;
     const double t_label = t_label_sow - t0_sow;
     bool in_outage = false;
@@ -111,10 +120,16 @@ GnssRun simulate_gnss(const MotionProfile& m, const std::vector<TruthSample>& tr
     const AntennaTruth ant = antenna_truth_at(m, truth, dt, t_meas, sch.lever_arm_b_m);
     GnssFix f;
     f.t_s = t_label_sow;
-    f.pos = earth::offset_ned(ant.pos, gm + w_pos);
+    f.pos = earth::offset_ned(ant.pos, gm + w_pos + jump);
+    if (!jump.isZero()) run.outliers.push_back({t_label_sow, jump});
     f.pos_std_ned_m = pos_std;
     f.has_velocity = sch.with_velocity;
-    f.vel_n_mps = ant.vel_n_mps + w_vel;
+    const Vec3 vel_n = sch.velocity_lag_s > 0.0
+                           ? antenna_truth_at(m, truth, dt, std::clamp(t_meas - sch.velocity_lag_s, 0.0, t_end),
+                                              sch.lever_arm_b_m)
+                                 .vel_n_mps
+                           : ant.vel_n_mps;
+    f.vel_n_mps = vel_n + sch.velocity_noise_factor * w_vel;
     f.vel_std_n_mps = vel_std;
     f.quality = level.quality;
     f.num_sats = level.num_sats;

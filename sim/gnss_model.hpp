@@ -35,11 +35,21 @@ struct GnssSchedule {
   double latency_mean_s = 0.08, latency_jitter_s = 0.01;  // solution available after its epoch
   bool with_velocity = false;
   bool with_noise = true;
+  double velocity_lag_s = 0.0;           // the velocity is the antenna's at (measurement time - lag)
+  double velocity_noise_factor = 1.0;    // simulated velocity noise = factor x the stated std
+  double outlier_rate = 0.0;             // fraction of epochs with a 1-3 m jump (stream "gnss_outliers")
+};
+
+// A single-epoch position jump (quality and stated std unchanged).
+struct GnssOutlier {
+  double t_s = 0.0;  // GPS seconds of week of the fix
+  Vec3 offset_ned_m = Vec3::Zero();
 };
 
 struct GnssRun {
   std::vector<GnssFix> fixes;
   std::vector<double> latency_s;  // per fix: arrival time = t_s + latency
+  std::vector<GnssOutlier> outliers;
 };
 
 // Antenna position and velocity at run time t (between IMU epochs: Hermite interpolation of the

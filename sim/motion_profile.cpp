@@ -57,23 +57,43 @@ Kinematics kinematics_at(const MotionProfile& m, double t) {
     roll += std::atan(u);
     roll_rate += du / (1.0 + u * u);
   }
-  k.rpy_rad = Vec3(roll, p.value, m.start.yaw_rad + yr.integral);
-  k.rpy_rate_rad_s = Vec3(roll_rate, p.rate, yr.value);
+  k.vehicle_rpy_rad = Vec3(roll, p.value, m.start.yaw_rad + yr.integral);
+  k.vehicle_rpy_rate_rad_s = Vec3(roll_rate, p.rate, yr.value);
 
   const double sr = std::sin(roll), cr = std::cos(roll);
   const double sp = std::sin(p.value), cp = std::cos(p.value);
-  const double sy = std::sin(k.rpy_rad.z()), cy = std::cos(k.rpy_rad.z());
-  k.C_b_n << cp * cy, -cr * sy + sr * sp * cy, sr * sy + cr * sp * cy,  //
+  const double sy = std::sin(k.vehicle_rpy_rad.z()), cy = std::cos(k.vehicle_rpy_rad.z());
+  k.C_v_n << cp * cy, -cr * sy + sr * sp * cy, sr * sy + cr * sp * cy,  //
       cp * sy, cr * cy + sr * sp * sy, -sr * cy + cr * sp * sy,        //
       -sp, sr * cp, cr * cp;
-  // Direction of travel (body x in NED) and its time derivative.
-  const Vec3 u(cp * cy, cp * sy, -sp);
   const double dp = p.rate, dy = yr.value, dr = roll_rate;
-  const Vec3 du(-sp * dp * cy - cp * sy * dy, -sp * dp * sy + cp * cy * dy, -cp * dp);
-  k.v_n_mps = k.speed_mps * u;
-  k.dv_n_dt_mps2 = k.accel_mps2 * u + k.speed_mps * du;
-  // ZYX Euler rates to the body rate relative to NED, in body axes.
-  k.omega_nb_b_rad_s = Vec3(dr - dy * sp, dp * cr + dy * sr * cp, -dp * sr + dy * cr * cp);
+  // ZYX Euler rates to the vehicle rate relative to NED, in vehicle axes.
+  k.omega_nv_v_rad_s = Vec3(dr - dy * sp, dp * cr + dy * sr * cp, -dp * sr + dy * cr * cp);
+  if (m.slip_rad_per_mps2 == 0.0) {
+    // Direction of travel (vehicle x in NED) and its time derivative.
+    const Vec3 u(cp * cy, cp * sy, -sp);
+    const Vec3 du(-sp * dp * cy - cp * sy * dy, -sp * dp * sy + cp * cy * dy, -cp * dp);
+    k.v_n_mps = k.speed_mps * u;
+    k.dv_n_dt_mps2 = k.accel_mps2 * u + k.speed_mps * du;
+  } else {
+    // Velocity along u_v = (cos b, sin b, 0) in vehicle axes, b = -k speed yaw_rate;
+    // d(C_v_n u_v)/dt = C_v_n (w_nv_v x u_v + du_v/dt).
+    k.slip_rad = -m.slip_rad_per_mps2 * k.speed_mps * yr.value;
+    const double db = -m.slip_rad_per_mps2 * (k.accel_mps2 * yr.value + k.speed_mps * yr.rate);
+    const Vec3 u_v(std::cos(k.slip_rad), std::sin(k.slip_rad), 0.0);
+    const Vec3 du_v = k.omega_nv_v_rad_s.cross(u_v) + db * Vec3(-u_v.y(), u_v.x(), 0.0);
+    k.v_n_mps = k.speed_mps * (k.C_v_n * u_v);
+    k.dv_n_dt_mps2 = k.C_v_n * (k.accel_mps2 * u_v + k.speed_mps * du_v);
+  }
+  if (!m.mounted) {
+    k.rpy_rad = k.vehicle_rpy_rad;
+    k.C_b_n = k.C_v_n;
+    k.omega_nb_b_rad_s = k.omega_nv_v_rad_s;
+  } else {
+    k.C_b_n = k.C_v_n * m.C_b_v;
+    k.omega_nb_b_rad_s = m.C_b_v.transpose() * k.omega_nv_v_rad_s;
+    k.rpy_rad = euler_from_C_b_n(k.C_b_n);
+  }
   return k;
 }
 

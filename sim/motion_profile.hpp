@@ -2,7 +2,9 @@
 // The vehicle's motion as four smooth scalar schedules (channels) of run time t [s, from 0]:
 // along-track acceleration, yaw rate, pitch and roll. Speed and yaw are their closed-form
 // integrals, so velocity and attitude are exact at any time and only the position needs an ODE.
-// The vehicle moves along its body x axis (no side slip), so v_n = speed * C_b_n * [1 0 0].
+// The vehicle moves along its own x axis (no side slip), so v_n = speed * C_v_n * [1 0 0], unless a
+// wheel slip is asked for. The IMU body may be mounted rotated in the vehicle (C_b_v): the schedules
+// move the VEHICLE frame (x forward, y right, z down); the IMU point is the vehicle's reference point.
 #include <vector>
 
 #include "common/geo/geodetic.hpp"
@@ -52,17 +54,30 @@ struct MotionProfile {
   // (switched only where the yaw rate is zero, so the roll stays smooth).
   Channel coordinated;
   double scheduled_s = 0.0;  // time covered by the scenario's segments
+
+  // IMU body axes in the vehicle frame: v = C_b_v b, C_b_v = Rz(yaw) Ry(pitch) Rx(roll) of the mounting
+  // angles. `mounted` false: the body is the vehicle frame (and the arithmetic is the original one).
+  bool mounted = false;
+  Mat3 C_b_v = Mat3::Identity();
+  // Side slip on turns: the velocity leaves vehicle x by beta = -k * a_lat (a_lat = speed * yaw rate,
+  // + right), i.e. the vehicle drifts to the outside of the turn. 0: no slip.
+  double slip_rad_per_mps2 = 0.0;
 };
 
-// Kinematics at run time t, independent of position.
+// Kinematics at run time t, independent of position. rpy, omega_nb_b and C_b_n are the IMU body's
+// (the vehicle's when not mounted); C_v_n and vehicle_rpy the vehicle's.
 struct Kinematics {
-  Vec3 rpy_rad = Vec3::Zero();        // yaw unwrapped (continuous)
-  Vec3 rpy_rate_rad_s = Vec3::Zero();
-  double speed_mps = 0.0, accel_mps2 = 0.0;
+  Vec3 rpy_rad = Vec3::Zero();        // IMU body; yaw unwrapped (continuous) when not mounted
+  Vec3 vehicle_rpy_rad = Vec3::Zero();  // yaw unwrapped
+  Vec3 vehicle_rpy_rate_rad_s = Vec3::Zero();
+  double speed_mps = 0.0, accel_mps2 = 0.0;  // along the path (along vehicle x without slip)
+  double slip_rad = 0.0;              // angle from vehicle x to the velocity, about vehicle z
   Vec3 v_n_mps = Vec3::Zero();
   Vec3 dv_n_dt_mps2 = Vec3::Zero();   // time derivative of the NED velocity components
   Vec3 omega_nb_b_rad_s = Vec3::Zero();
+  Vec3 omega_nv_v_rad_s = Vec3::Zero();
   Mat3 C_b_n = Mat3::Identity();
+  Mat3 C_v_n = Mat3::Identity();
 };
 Kinematics kinematics_at(const MotionProfile& m, double t_s);
 

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "common/formats/kfgins_files.hpp"
+#include "common/formats/odometer_text.hpp"
 #include "common/formats/rtklib_pos_writer.hpp"
 #include "common/io/input_error.hpp"
 #include "common/io/output_file.hpp"
@@ -16,6 +17,7 @@
 #include "sim/effects.hpp"
 #include "sim/random.hpp"
 #include "sim/simulator.hpp"
+#include "sim/vehicle_realism.hpp"
 
 namespace ldv::sim {
 namespace {
@@ -31,6 +33,28 @@ YAML::Node flow(const std::vector<double>& v) {
   for (double x : v) n.push_back(x);
   n.SetStyle(YAML::EmitterStyle::Flow);
   return n;
+}
+
+// The individual road bumps and GNSS outliers (when those effects are on).
+void write_vehicle_events(YAML::Emitter& e, const SimResult& r) {
+  const double t0 = r.request.start_sow_s;
+  if (r.realism.shocks_per_km > 0.0) {
+    e << YAML::Key << "shock_events"
+      << YAML::Comment("t_sow [s], duration [s], roll rate peak, pitch rate peak [deg/s] (vehicle x, y), "
+                       "vertical accel peak [m/s^2] (vehicle z, down +): sim/road_shocks.hpp");
+    e << YAML::Value << YAML::BeginSeq;
+    for (const ShockEvent& s : r.shocks)
+      e << flow({t0 + s.t_start_s, s.duration_s, s.roll_rate_peak_rad_s * kRadToDeg, s.pitch_rate_peak_rad_s * kRadToDeg,
+                 s.vertical_accel_peak_mps2});
+    e << YAML::EndSeq;
+  }
+  if (r.realism.gnss_outlier_rate > 0.0) {
+    e << YAML::Key << "gnss_outlier_events" << YAML::Comment("t_sow [s], position jump N E D [m]");
+    e << YAML::Value << YAML::BeginSeq;
+    for (const GnssOutlier& o : r.gnss_outliers)
+      e << flow({o.t_s, o.offset_ned_m.x(), o.offset_ned_m.y(), o.offset_ned_m.z()});
+    e << YAML::EndSeq;
+  }
 }
 
 // The answer key: every injected effect in SI and in the engineering units of the command line.
@@ -53,13 +77,16 @@ void write_truth_effects(const std::string& path, const SimResult& r) {
   e << YAML::Key << "start_sow_s" << YAML::Value << q.start_sow_s;
   e << YAML::Key << "outages" << YAML::Value << YAML::BeginSeq;
   for (const Outage& o : q.outages) e << flow({o.start_s, o.length_s});
-  e << YAML::EndSeq << YAML::EndMap;
+  e << YAML::EndSeq;
+  if (r.realism.realism_vehicle) e << YAML::Key << "realism" << YAML::Value << q.vehicle.realism;
+  e << YAML::EndMap;
   e << YAML::Key << "effects" << YAML::Comment("true injected values; si: SI units (docs/effects.md)");
   e << YAML::Value << YAML::BeginMap;
   for (const auto& [name, si] : r.injected_effects) {
     e << YAML::Key << name << YAML::Value << YAML::BeginMap;
     e << YAML::Key << "si" << YAML::Value << flow(si);
     const EffectInfo* info = find_effect(name);
+    if (!info) info = find_realism_quantity(name);
     if (info && info->si_per_unit.size() >= si.size()) {
       std::vector<double> eng;
       std::string units;
@@ -75,7 +102,9 @@ void write_truth_effects(const std::string& path, const SimResult& r) {
     e << YAML::Key << "declared" << YAML::Value << declared;
     e << YAML::EndMap;
   }
-  e << YAML::EndMap << YAML::EndMap;
+  e << YAML::EndMap;
+  write_vehicle_events(e, r);
+  e << YAML::EndMap;
   std::ofstream out(path);
   if (!out) throw InputError(path, 0, "cannot open file for writing");
   out << "# ldv sim: the truth of every injected effect (the answer key for ldv diagnose)\n" << e.c_str() << "\n";
@@ -126,6 +155,26 @@ void write_device_files(const fs::path& dir, const SimResult& r) {
   close_checked(f, sched);
 }
 
+// What a new user writes from the datasheet: the same files and noise of the grade, no initial state
+// (the system aligns from the data), no lever arm, no time offset, no estimator settings.
+KfGinsConfig datasheet_config(const SimResult& r) {
+  KfGinsConfig c;
+  c.imu_path = r.kfgins.imu_path;
+  c.gnss_path = r.kfgins.gnss_path;
+  c.output_path = r.kfgins.output_path;
+  c.config_path = r.kfgins.config_path;
+  c.imu_data_columns = r.kfgins.imu_data_columns;
+  c.imu_rate_hz = r.kfgins.imu_rate_hz;
+  c.start_time_s = r.kfgins.start_time_s;
+  c.end_time_s = -1.0;
+  c.imu_noise = r.kfgins.imu_noise;
+  YAML::Node ldv;
+  ldv["week"] = r.request.gps_week;
+  if (r.kfgins.ldv["odopath"]) ldv["odopath"] = r.kfgins.ldv["odopath"].as<std::string>();
+  c.ldv = ldv;
+  return c;
+}
+
 void write_all(const fs::path& tmp, const fs::path& final_dir, SimResult& r) {
   const SimRequest& q = r.request;
   r.kfgins.imu_path = (final_dir / "imu.txt").string();
@@ -136,7 +185,12 @@ void write_all(const fs::path& tmp, const fs::path& final_dir, SimResult& r) {
   write_kfgins_gnss((tmp / "gnss.txt").string(), r.gnss, q.gnss_velocity);
   write_truth_nav((tmp / "truth.nav").string(), r);
   r.kfgins.ldv["week"] = q.gps_week;  // KF-GINS has no week: `ldv nav` reads ldv.week for its .nav
+  if (r.realism.odometer) {
+    write_odometer_text((tmp / "odo.txt").string(), r.odometer);
+    r.kfgins.ldv["odopath"] = (final_dir / "odo.txt").string();
+  }
   save_kfgins_config(r.kfgins, (tmp / "kfgins.yaml").string());
+  if (r.realism.write_datasheet_config) save_kfgins_config(datasheet_config(r), (tmp / "datasheet.yaml").string());
   write_truth_effects((tmp / "truth_effects.yaml").string(), r);
   write_truth_errors((tmp / "truth_errors.txt").string(), r);
   RtklibPosOptions pos;

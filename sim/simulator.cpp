@@ -1,6 +1,7 @@
 #include "sim/simulator.hpp"
 
 #include <cmath>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -8,9 +9,11 @@
 #include "common/time/gps_time.hpp"
 #include "sim/effects.hpp"
 #include "sim/gnss_model.hpp"
+#include "sim/odometer_model.hpp"
 #include "sim/random.hpp"
 #include "sim/scenario.hpp"
 #include "sim/truth_integrator.hpp"
+#include "sim/vehicle_vibration.hpp"
 
 namespace ldv::sim {
 namespace {
@@ -113,6 +116,38 @@ TriadSensorModel triad_model(const TriadErrorModel& g, const EffectSet& fx, cons
 
 std::vector<double> as_vector(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
+// The vehicle effects that are on, SI (units: find_realism_quantity / effect_table).
+void record_vehicle_effects(const VehicleRealism& v, const ImuGrade& grade, double odometer_scale,
+                            bool scale_given, SimResult& res) {
+  auto& e = res.injected_effects;
+  if (v.vibration_factor > 0.0) {
+    e["vibration_white_factor"] = {v.vibration_factor};
+    e["installed_arw"] = as_vector(grade.gyro.white_N * v.vibration_factor);
+    e["installed_vrw"] = as_vector(grade.accel.white_N * v.vibration_factor);
+    const EngineFrequencyLaw law = VehicleVibration::law();
+    e["engine_vibration"] = {v.engine_accel_mps2, v.engine_gyro_rad_s, law.idle_hz, law.max_hz, law.speed_at_max_mps};
+  }
+  if (v.shocks_per_km > 0.0) {
+    e["shocks"] = {v.shocks_per_km * 1e-3};
+    e["shocks.count"] = {static_cast<double>(res.shocks.size())};
+  }
+  if (v.imu_latency_s > 0.0) e["imu_latency"] = {v.imu_latency_s};
+  if (v.mounted || v.odometer) e["vehicle_mounting"] = as_vector(v.mounting_rpy_rad);
+  if (v.gnss_velocity_lag_s > 0.0) e["gnss_velocity_lag"] = {v.gnss_velocity_lag_s};
+  if (v.gnss_velocity_noise_factor != 1.0) e["gnss_velocity_noise_factor"] = {v.gnss_velocity_noise_factor};
+  if (v.gnss_outlier_rate > 0.0) {
+    e["gnss_outliers"] = {v.gnss_outlier_rate};
+    e["gnss_outliers.count"] = {static_cast<double>(res.gnss_outliers.size())};
+  }
+  if (v.odometer || scale_given) e["odometer_scale"] = {odometer_scale};
+  if (v.odometer) {
+    e["odometer_lever_arm"] = as_vector(v.odo_lever_arm_b_m);
+    e["odometer_noise"] = {res.request.with_noise ? v.odo_noise_mps : 0.0};
+    e["odometer_quantum"] = {v.odo_quantum_mps};
+  }
+  if (v.wheel_slip_rad_per_mps2 != 0.0) e["wheel_slip"] = {v.wheel_slip_rad_per_mps2};
+}
+
 }  // namespace
 
 SimResult simulate(const SimRequest& req, const std::function<void(double)>& progress) {
@@ -121,10 +156,15 @@ SimResult simulate(const SimRequest& req, const std::function<void(double)>& pro
   const EffectSet fx = parse_effects(req);
   const GnssErrorLevel gnss_level = gnss_error_level(req.gnss_mode);
   const Scenario scenario = load_scenario(req.scenario);
-  const MotionProfile motion = compile_scenario(scenario, req.duration_s);
+  const VehicleRealism veh = resolve_vehicle_options(req.vehicle, req.seed);
+  MotionProfile motion = compile_scenario(scenario, req.duration_s);
+  motion.mounted = veh.mounted;
+  motion.C_b_v = veh.C_b_v;
+  motion.slip_rad_per_mps2 = veh.wheel_slip_rad_per_mps2;
 
   SimResult res;
   res.request = req;
+  res.realism = veh;
   res.grade_source = grade.source;
   res.scenario_name = scenario.name;
   res.declared_effects.assign(fx.declared.begin(), fx.declared.end());
@@ -173,6 +213,12 @@ SimResult simulate(const SimRequest& req, const std::function<void(double)>& pro
     if (progress) progress(0.85 * f);
   });
 
+  // The car's vibration and road bumps reach the sensor before its own errors do.
+  std::optional<VehicleVibration> vibration;
+  if (veh.vibration_factor > 0.0) vibration.emplace(veh, grade, dt, run.truth.front().vel_n_mps.norm(), req.seed);
+  res.shocks = draw_shocks(run.truth, dt, veh.shocks_per_km, req.seed);
+  RoadShocks shocks(res.shocks, veh.C_b_v);
+
   // Sensor errors.
   ImuErrorSimulator errors(sensor, req.seed);
   res.imu.resize(n);
@@ -185,8 +231,13 @@ SimResult simulate(const SimRequest& req, const std::function<void(double)>& pro
       b.t_s += req.start_sow_s;
       res.imu_bias_history.push_back(b);
     }
-    res.imu[k] = errors.apply(run.increments[k], t_mid, topt.with_squares ? run.omega_sq_integral[k] : kZero,
+    ImuIncrement sensed = run.increments[k];
+    if (vibration) vibration->add(sensed, run.truth[k + 1].vel_n_mps.norm());
+    if (!res.shocks.empty()) shocks.add(sensed, static_cast<double>(k) * dt, static_cast<double>(k + 1) * dt);
+    res.imu[k] = errors.apply(sensed, t_mid, topt.with_squares ? run.omega_sq_integral[k] : kZero,
                               topt.with_squares ? run.f_sq_integral[k] : kZero);
+    // A late IMU: its time tag is the true sample time plus the latency.
+    if (veh.imu_latency_s > 0.0) res.imu[k].t_s += veh.imu_latency_s;
     if (progress && k % (n / 10 + 1) == 0) progress(0.85 + 0.1 * k / n);
   }
 
@@ -199,9 +250,30 @@ SimResult simulate(const SimRequest& req, const std::function<void(double)>& pro
   sch.latency_mean_s = req.gnss_latency_s;
   sch.with_velocity = req.gnss_velocity;
   sch.with_noise = req.with_noise;
+  sch.velocity_lag_s = veh.gnss_velocity_lag_s;
+  sch.velocity_noise_factor = veh.gnss_velocity_noise_factor;
+  sch.outlier_rate = veh.gnss_outlier_rate;
   GnssRun gnss = simulate_gnss(motion, run.truth, dt, gnss_level, sch, req.seed);
   res.gnss = std::move(gnss.fixes);
   res.gnss_latency_s = std::move(gnss.latency_s);
+  res.gnss_outliers = std::move(gnss.outliers);
+
+  // Odometer: scale from --effect odometer_scale, else the realism preset's draw (N(0, 0.5 %)).
+  double odometer_scale = fx.scalar("odometer_scale");
+  if (!fx.has("odometer_scale") && veh.realism_vehicle) {
+    Rng rng(req.seed, "realism_odometer_scale");
+    odometer_scale = 0.005 * rng.normal();
+  }
+  if (veh.odometer) {
+    OdometerModel od;
+    od.rate_hz = veh.odo_rate_hz;
+    od.lever_arm_b_m = veh.odo_lever_arm_b_m;
+    od.scale = odometer_scale;
+    od.noise_mps = veh.odo_noise_mps;
+    od.quantum_mps = veh.odo_quantum_mps;
+    od.with_noise = req.with_noise;
+    res.odometer = simulate_odometer(motion, run.truth, dt, od, req.seed);
+  }
   res.truth = std::move(run.truth);
 
   // True values of the injected effects (SI).
@@ -216,6 +288,7 @@ SimResult simulate(const SimRequest& req, const std::function<void(double)>& pro
                            "accel_nonlinear_scale", "lever_arm", "time_offset", "gyro_moving_bias",
                            "accel_moving_bias"})
     if (fx.has(name)) res.injected_effects[name] = fx.values.at(name).si;
+  record_vehicle_effects(veh, grade, odometer_scale, fx.has("odometer_scale"), res);
 
   // KF-GINS configuration: initial state from the truth, noise from the grade, declared effects only.
   KfGinsConfig& c = res.kfgins;

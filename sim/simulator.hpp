@@ -10,10 +10,14 @@
 
 #include "common/formats/kfgins_config.hpp"
 #include "common/formats/nav_types.hpp"
+#include "common/formats/odometer_text.hpp"
+#include "sim/gnss_model.hpp"
 #include "sim/imu_error_model.hpp"
 #include "sim/imu_grade.hpp"
 #include "sim/motion_profile.hpp"
+#include "sim/road_shocks.hpp"
 #include "sim/truth_sample.hpp"
+#include "sim/vehicle_realism.hpp"
 
 namespace ldv::sim {
 
@@ -50,6 +54,7 @@ struct SimRequest {
   double oscillator_hz = 10e6;      // time-stamp unit counter (imu_device.bin)
   double oscillator_ppm = 25.0;     // its frequency error
   int leap_seconds = 18;            // GPS - UTC, for NMEA times
+  VehicleOptions vehicle;           // --realism and the vehicle effects (sim/vehicle_realism.hpp)
 };
 
 struct SimResult {
@@ -66,12 +71,16 @@ struct SimResult {
   std::vector<ImuBiasSample> imu_bias_history;  // 1 Hz: total true bias (constant + moving parts)
   std::string grade_source;
   std::string scenario_name;
+  VehicleRealism realism;                      // the vehicle effects as simulated (preset draws resolved)
+  std::vector<OdometerSample> odometer;        // odo.txt (empty without the odometer)
+  std::vector<ShockEvent> shocks;              // road bumps (run time)
+  std::vector<GnssOutlier> gnss_outliers;      // position jumps
 };
 
 SimResult simulate(const SimRequest& req, const std::function<void(double fraction)>& progress = {});
 
 // Writes imu.txt gnss.txt truth.nav kfgins.yaml truth_effects.yaml truth_errors.txt gnss.pos
-// imu_device.bin gnss.nmea into out_dir, all-or-nothing (a temporary directory beside it, then moved).
+// imu_device.bin gnss.nmea (odo.txt with the odometer, datasheet.yaml with --realism vehicle) into out_dir, all-or-nothing (a temporary directory beside it, then moved).
 // Sets result.kfgins paths (absolute, into out_dir).
 void write_outputs(SimResult& result, const std::string& out_dir);
 

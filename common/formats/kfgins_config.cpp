@@ -97,6 +97,7 @@ const std::vector<std::string> kLdvKeys = {
     "odopath",
     // inputs
     "week", "pos_height_offset_m", "float_std_min_m", "imu_time_shift_s", "imu_latency", "calibration",
+    "odopath",  // odometer text file (common/formats/odometer_text.hpp), written by `ldv sim --odometer`
     // written by `ldv sim` (its truth and settings, for the record)
     "simulator", "declared_effects_si", "gnss_latency_s"};
 

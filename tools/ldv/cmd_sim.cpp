@@ -18,6 +18,9 @@ struct SimOptions {
   std::string outages_text;
   std::string out_dir;
   std::vector<double> lever_arm;
+  // Vehicle options (sim/vehicle_realism.hpp): given or not decides whether the realism preset draws them.
+  double vibration = 0, shocks = 0, imu_latency = 0, gnss_velocity_lag = 0, gnss_velocity_noise = 0, gnss_outliers = 0;
+  std::vector<double> mounting, engine_vibration, odo_lever_arm;
   bool no_noise = false;
   bool quiet = false;
   bool list_scenarios = false, list_effects = false;
@@ -46,7 +49,33 @@ std::vector<sim::Outage> parse_outages(const std::string& text) {
   return out;
 }
 
-void run(SimOptions& o) {
+// Copies the vehicle options that were given (an option not given stays unset: the preset may draw it).
+void set_vehicle_options(SimOptions& o, const CLI::App& cmd) {
+  auto& v = o.req.vehicle;
+  auto given = [&](const char* name) { return cmd.get_option(name)->count() > 0; };
+  if (given("--vibration")) v.vibration_factor = o.vibration;
+  if (given("--shocks")) v.shocks_per_km = o.shocks;
+  if (given("--imu-latency")) v.imu_latency_s = o.imu_latency;
+  if (given("--gnss-velocity-lag")) v.gnss_velocity_lag_s = o.gnss_velocity_lag;
+  if (given("--gnss-velocity-noise")) v.gnss_velocity_noise_factor = o.gnss_velocity_noise;
+  if (given("--gnss-outliers")) v.gnss_outlier_rate = o.gnss_outliers;
+  if (!o.mounting.empty()) {
+    if (o.mounting.size() != 3) throw InputError("--mounting", 0, "expected 3 values roll,pitch,yaw [deg]");
+    v.mounting_rpy_deg = Vec3(o.mounting[0], o.mounting[1], o.mounting[2]);
+  }
+  if (!o.engine_vibration.empty()) {
+    if (o.engine_vibration.size() != 2)
+      throw InputError("--engine-vibration", 0, "expected 2 values ACCEL_MPS2,GYRO_DPS");
+    v.engine_accel_mps2 = o.engine_vibration[0];
+    v.engine_gyro_dps = o.engine_vibration[1];
+  }
+  if (!o.odo_lever_arm.empty()) {
+    if (o.odo_lever_arm.size() != 3) throw InputError("--odo-lever-arm", 0, "expected 3 values x,y,z [m]");
+    v.odo_lever_arm_b_m = Vec3(o.odo_lever_arm[0], o.odo_lever_arm[1], o.odo_lever_arm[2]);
+  }
+}
+
+void run(SimOptions& o, const CLI::App& cmd) {
   if (o.list_scenarios) {
     for (const auto& n : sim::builtin_scenario_names()) {
       const auto s = sim::load_scenario(n);
@@ -78,6 +107,7 @@ void run(SimOptions& o) {
                             std::to_string(o.lever_arm[2]));
   }
   o.req.with_noise = !o.no_noise;
+  set_vehicle_options(o, cmd);
   int last_percent = -1;
   auto progress = [&](double f) {
     const int p = static_cast<int>(f * 100.0);
@@ -117,13 +147,44 @@ void add_sim_command(CLI::App& app) {
   cmd->add_option("--osc-hz", r.oscillator_hz, "time-stamp unit counter frequency [Hz]")->capture_default_str();
   cmd->add_option("--osc-ppm", r.oscillator_ppm, "counter frequency error [ppm]")->capture_default_str();
   cmd->add_option("--leap-seconds", r.leap_seconds, "GPS - UTC [s] for NMEA times")->capture_default_str();
+  auto& v = r.vehicle;
+  cmd->add_option("--realism", v.realism,
+                  "none | vehicle: vibration, shocks, IMU latency, mounting, GNSS velocity lag and outliers, odometer, "
+                  "datasheet.yaml (options given explicitly win)")
+      ->capture_default_str();
+  cmd->add_option("--vibration", opts->vibration,
+                  "vehicle vibration: installed white noise = FACTOR x the grade's ARW/VRW, plus engine harmonics");
+  cmd->add_option("--engine-vibration", opts->engine_vibration,
+                  "engine harmonic amplitudes with --vibration: ACCEL_MPS2,GYRO_DPS (default 0.3,0.2)")
+      ->delimiter(',')
+      ->expected(2);
+  cmd->add_option("--shocks", opts->shocks, "road bumps per km travelled");
+  cmd->add_option("--imu-latency", opts->imu_latency, "IMU time tags late by S [s] (tag = true time + S)");
+  cmd->add_option("--mounting", opts->mounting,
+                  "IMU body in the vehicle: roll,pitch,yaw [deg], C_b_v = Rz(yaw) Ry(pitch) Rx(roll)")
+      ->delimiter(',')
+      ->expected(3);
+  cmd->add_option("--gnss-velocity-lag", opts->gnss_velocity_lag, "GNSS velocity is the one at epoch - S [s]");
+  cmd->add_option("--gnss-velocity-noise", opts->gnss_velocity_noise,
+                  "simulated GNSS velocity noise = FACTOR x the stated std (the stated std unchanged)");
+  cmd->add_option("--gnss-outliers", opts->gnss_outliers, "fraction of GNSS epochs with a 1-3 m position jump");
+  cmd->add_flag("--odometer", v.odometer, "write odo.txt: sow, forward speed [m/s]");
+  cmd->add_option("--odo-rate", v.odo_rate_hz, "odometer rate [Hz]")->capture_default_str();
+  cmd->add_option("--odo-lever-arm", opts->odo_lever_arm,
+                  "odometer point (rear-axle centre) minus IMU, x,y,z [m] in IMU body axes")
+      ->delimiter(',')
+      ->expected(3);
+  cmd->add_option("--odo-noise", v.odo_noise_mps, "odometer white noise std [m/s]")->capture_default_str();
+  cmd->add_option("--odo-quantum", v.odo_quantum_mps, "odometer speed resolution [m/s] (0: none)")->capture_default_str();
+  cmd->add_option("--wheel-slip", v.wheel_slip_deg_per_mps2,
+                  "side slip on turns [deg per m/s^2 of lateral acceleration], drifting to the outside");
   cmd->add_flag("--no-noise", opts->no_noise, "no random noise (sensor and GNSS); deterministic errors stay");
   cmd->add_option("--out", opts->out_dir, "output directory (written all-or-nothing)");
   cmd->add_flag("--quiet", opts->quiet, "no progress on stderr");
   cmd->add_flag("--list-scenarios", opts->list_scenarios, "list the built-in scenarios and exit");
   cmd->add_flag("--list-effects", opts->list_effects, "list the effects, units and defaults and exit");
   cmd->add_option("--print-scenario", opts->print_scenario, "print a built-in scenario's YAML and exit");
-  cmd->callback([opts] { run(*opts); });
+  cmd->callback([opts, cmd] { run(*opts, *cmd); });
 }
 
 const ldv::cli::RegisterCommand kRegister{"sim", &add_sim_command};
