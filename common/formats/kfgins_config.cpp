@@ -94,7 +94,6 @@ const std::vector<std::string> kLdvKeys = {
     "gnss_bias_sigma_m", "gnss_bias_tau_s", "time_offset_s",
     // land-vehicle aids (estimator/options.hpp AidOptions)
     "aids", "vehicle_mounting_deg", "nhc_std_mps", "odometer_std_mps", "odometer_lever_arm_m", "odometer_scale",
-    "odopath",
     // inputs
     "week", "pos_height_offset_m", "float_std_min_m", "imu_time_shift_s", "imu_latency", "calibration",
     "odopath",  // odometer text file (common/formats/odometer_text.hpp), written by `ldv sim --odometer`

@@ -13,6 +13,8 @@
 #include "estimator/run/run_navigation.hpp"
 #include "common/formats/rtklib_solution.hpp"
 #include "common/formats/imu_calibration.hpp"
+#include "common/formats/odometer_text.hpp"
+#include "estimator/update/odometer.hpp"
 
 namespace ldv::assess {
 namespace {
@@ -124,6 +126,28 @@ NavInputs load_nav_model(const NavInputArgs& a) {
 }
 
 namespace {
+
+// The odometer's readings when the odometer aid is on: --odometer, else ldv.odopath (resolved like imupath).
+void load_odometer(const NavInputArgs& a, NavInputs& in) {
+  if (!in.options.aids.has("odometer")) return;
+  std::string path = a.odometer;
+  if (path.empty() && has_ldv_key(in.config, "odopath")) {
+    try {
+      path = resolve_data_path(in.config.ldv["odopath"].as<std::string>(), in.config.config_path);
+    } catch (const YAML::Exception&) {
+      throw InputError(in.config.config_path, in.config.ldv["odopath"].Mark().line + 1, "key 'ldv.odopath': expected a path");
+    }
+  }
+  if (path.empty())
+    throw InputError(in.config.config_path.empty() ? "--aid odometer" : in.config.config_path, 0,
+                     "the odometer aid needs its readings: --odometer FILE or ldv.odopath (lines 'sow speed_mps')");
+  const std::vector<OdometerSample> samples = read_odometer_text(path);
+  if (samples.empty()) throw InputError(path, 0, "no odometer readings");
+  for (const OdometerSample& o : samples)
+    in.other_observations.push_back(std::make_shared<est::OdometerObservation>(o.t_s, o.speed_mps));
+  in.file_counts.push_back({"odometer", path, static_cast<long>(samples.size()), {}});
+  in.description += " + " + path;
+}
 
 // IMU stamps late against GNSS time (a consumer IMU behind a USB or serial buffer): found from the data
 // and taken out before the filter sees them, unless the user set the shift or asked for KF-GINS's behaviour.
@@ -286,6 +310,7 @@ NavInputs load_nav_inputs(const NavInputArgs& a) {
     in.file_counts.push_back({"GNSS", gnss_path, rep.rows, rep.dropped});
   }
   in.description += " + " + gnss_path;
+  load_odometer(a, in);
   estimate_and_remove_imu_latency(a, imu_time_shift_s != 0.0, in);
   decide_gnss_velocity_use(a, in);
   if (a.strict) {
