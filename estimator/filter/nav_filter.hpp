@@ -63,6 +63,8 @@ class NavFilter {
   std::vector<InnovationRecord> take_innovations();
   const std::vector<InnovationRecord>& innovations() const { return innovations_; }
   void set_observer(FilterObserver* observer) { observer_ = observer; }
+  // Forgets queued fixes tagged after t_s (a copy restarting into a GNSS outage: toolbox/assess/filter_checkpoint).
+  void drop_queued_gnss_after(double t_s) { while (!pending_.empty() && pending_.back().fix.t_s > t_s) pending_.pop_back(); }
   double gate_threshold() const { return gate_; }
 
  private:
