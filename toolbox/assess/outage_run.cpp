@@ -10,7 +10,6 @@
 #include <cstdio>
 #include <map>
 #include <mutex>
-#include <set>
 #include <thread>
 
 #include "common/io/input_error.hpp"
@@ -84,16 +83,19 @@ class DriftTracker {
 
 OutageResult run_outage_segment(const FilterCheckpoint& cp, const OutageWindow& w, const std::vector<ImuIncrement>& imu,
                                 const NavSeries& reference, const OutageRunOptions& o) {
-  std::unique_ptr<est::NavFilter> f = restore_filter(cp);
+  est::NavFilter f = restore_filter(cp);
   DriftTracker tracker(w, reference, o);
   const double t_stop = w.start_s + w.length_s + kEpochTolerance_s;
-  auto it = std::upper_bound(imu.begin(), imu.end(), cp.state.t_s + kEpochTolerance_s,
+  // An IMU epoch just after the start (fixes off the IMU grid) belongs to the outage, as in a re-run: it sets
+  // the 10 Hz evaluation grid.
+  if (f.state().t_s > w.start_s) tracker.observe(f);
+  auto it = std::upper_bound(imu.begin(), imu.end(), f.state().t_s + kEpochTolerance_s,
                              [](double t, const ImuIncrement& s) { return t < s.t_s; });
   for (; it != imu.end() && it->t_s <= t_stop; ++it) {
-    f->add_imu(*it);
-    tracker.observe(*f);
+    f.add_imu(*it);
+    tracker.observe(f);
   }
-  return tracker.finish(*f);
+  return tracker.finish(f);
 }
 
 namespace {
@@ -163,9 +165,10 @@ OutageRun run_outages(const std::vector<ImuIncrement>& imu, const std::vector<Gn
   est::RunCallbacks cb;
   cb.on_epoch = [&](const est::NavFilter& f) {
     uncut.push_back(sample_of(f.state()));
-    // The fix at the start epoch has been applied once the IMU has reached it.
+    // The fix at the start epoch has been applied once the IMU has reached it; the ones after it that the
+    // run has already queued are the outage's.
     while (checkpoints.size() < starts.size() && f.state().t_s + kEpochTolerance_s >= starts[checkpoints.size()])
-      checkpoints.push_back(capture_checkpoint(f));
+      checkpoints.push_back(capture_checkpoint(f, starts[checkpoints.size()]));
   };
   int last_percent = -10;
   cb.on_progress = [&](double done) {
@@ -177,9 +180,6 @@ OutageRun run_outages(const std::vector<ImuIncrement>& imu, const std::vector<Gn
   const est::RunSummary summary = est::run_navigation(imu, gnss, cfg, uncut_filter, cb);
   run.imu_samples = summary.imu_samples;
   run.uncut_run_s = seconds_since(t0);
-  std::set<std::string> lost;
-  for (const auto& c : checkpoints) lost.insert(c.not_carried.begin(), c.not_carried.end());
-  run.not_carried.assign(lost.begin(), lost.end());
   const NavSeries uncut_series(std::move(uncut));
   const NavSeries& reference = truth.empty() ? uncut_series : truth;
 

@@ -50,7 +50,6 @@ struct OutageResult {
 struct OutageRun {
   std::string reference;  // "truth" or "uncut solution"
   std::vector<OutageResult> outages;  // sorted by length, then start
-  std::vector<std::string> not_carried;  // checkpoint limitations met (filter_checkpoint.hpp)
   double uncut_run_s = 0.0, outages_run_s = 0.0;  // wall time
   long imu_samples = 0;
   int threads = 1;
