@@ -223,3 +223,22 @@ TEST(ExactCheckpoint, RestartIntoAnOutageEqualsTheUninterruptedRunWithThatOutage
   EXPECT_EQ(with_outage.effect_state(), restored.effect_state());
   EXPECT_GT(drift_m, 0.01);
 }
+
+TEST(ExactCheckpoint, RestoredFilterDoesNotReportToTheOriginalsObserver) {
+  // The observer is a raw pointer to an object of the original's owner (ldv diagnose): a restart must not call it.
+  struct Counter : est::FilterObserver {
+    long calls = 0;
+    bool wants_matrices() const override { return true; }
+    void on_update(const est::InnovationRecord&, const Eigen::MatrixXd&, const Eigen::MatrixXd&) override { ++calls; }
+  } counter;
+  const sim::SimResult& s = drive();
+  est::NavFilter original = started_filter(s);
+  original.set_observer(&counter);
+  Feeder in{&s, false};
+  while (in.next_t_s() < s.imu.front().t_s + 20.0) in.step(original);
+  ASSERT_GT(counter.calls, 0);
+  const long before = counter.calls;
+  est::NavFilter restored = restore_filter(capture_checkpoint(original, std::numeric_limits<double>::infinity()));
+  while (in.next_t_s() < s.imu.front().t_s + 40.0) in.step(restored);
+  EXPECT_EQ(counter.calls, before);
+}
