@@ -4,8 +4,8 @@
 // NavFilter keeps its whole state in value members (its effects are shared, immutable), so a copy continues
 // exactly as the original would on the same data: navigation state, covariance, every effect estimate (the
 // moving biases' split and ramp rates, the GNSS position bias, ...), the mechanisation's previous increment
-// (coning/sculling), the ZUPT detector, the snapshots and IMU history a late fix rewinds to. What the copy
-// does not take over from the original:
+// (coning/sculling), the adapted IMU noise scale, the ZUPT detector, the snapshots and IMU history a late fix
+// rewinds to. What the copy does not take over from the original:
 //  - its observer (`NavFilter::set_observer`, a raw pointer to an object the original's owner keeps): the copy
 //    reports to nobody; set one on the restored filter to watch a restart;
 //  - innovation records not yet taken (outputs of the original's past, not state);
