@@ -410,6 +410,12 @@ void NavFilter::add_observation(ObservationPtr obs) {
   rewind_and_apply(e);
 }
 
+void NavFilter::drop_queued_gnss_after(double t_s) {
+  std::erase_if(pending_, [t_s](const Event& e) {
+    return e.t_s() > t_s && dynamic_cast<const GnssFixObservation*>(e.obs.get()) != nullptr;
+  });
+}
+
 void NavFilter::enqueue(const Event& e) {
   const auto at = std::upper_bound(pending_.begin(), pending_.end(), e.t_s(),
                                    [](double t, const Event& g) { return t < g.t_s(); });

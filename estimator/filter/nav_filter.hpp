@@ -76,6 +76,9 @@ class NavFilter {
   double gate_threshold(int dof = 3) const;
   // Where the measurement models linearise now: attitude, compensated rates, the effects' estimates.
   LinearizationPoint linearization_point() const;
+  // Forgets queued GNSS fixes tagged after t_s, keeping other sensors' readings (a copy restarting into a
+  // GNSS outage: toolbox/assess/filter_checkpoint).
+  void drop_queued_gnss_after(double t_s);
 
  private:
   struct Event {

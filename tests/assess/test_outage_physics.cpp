@@ -22,7 +22,7 @@ FilterCheckpoint checkpoint_at_truth(const sim::SimResult& s, double t_start_s) 
   const NavSample truth = *series.at(t_start_s);
   est::NavFilter f(o);
   f.initialize(est::NavState{truth.t_s, truth.pos, truth.vel_n_mps, truth.q_b_n}, est::NavStd{});
-  return capture_checkpoint(f);
+  return capture_checkpoint(f, truth.t_s);  // nothing queued: a fresh filter
 }
 
 OutageResult free_inertial(const sim::SimResult& s, double start_s, double length_s) {

@@ -10,7 +10,6 @@
 #include <cstdio>
 #include <map>
 #include <mutex>
-#include <set>
 #include <thread>
 
 #include "common/io/input_error.hpp"
@@ -84,16 +83,24 @@ class DriftTracker {
 
 OutageResult run_outage_segment(const FilterCheckpoint& cp, const OutageWindow& w, const std::vector<ImuIncrement>& imu,
                                 const NavSeries& reference, const OutageRunOptions& o) {
-  std::unique_ptr<est::NavFilter> f = restore_filter(cp);
+  est::NavFilter f = restore_filter(cp);
   DriftTracker tracker(w, reference, o);
   const double t_stop = w.start_s + w.length_s + kEpochTolerance_s;
-  auto it = std::upper_bound(imu.begin(), imu.end(), cp.state.t_s + kEpochTolerance_s,
+  // An IMU epoch just after the start (fixes off the IMU grid) belongs to the outage, as in a re-run: it sets
+  // the 10 Hz evaluation grid.
+  if (f.state().t_s > w.start_s) tracker.observe(f);
+  auto it = std::upper_bound(imu.begin(), imu.end(), f.state().t_s + kEpochTolerance_s,
                              [](double t, const ImuIncrement& s) { return t < s.t_s; });
+  // Other sensors' readings go on, handed over as run_navigation does (0.5 s ahead of the IMU): the copy
+  // already holds those up to its epoch + 0.5 s.
+  auto other = std::upper_bound(o.others.begin(), o.others.end(), f.state().t_s + 0.5,
+                                [](double t, const est::ObservationPtr& p) { return t < p->t_s; });
   for (; it != imu.end() && it->t_s <= t_stop; ++it) {
-    f->add_imu(*it);
-    tracker.observe(*f);
+    for (; other != o.others.end() && (*other)->t_s <= it->t_s + 0.5; ++other) f.add_observation(*other);
+    f.add_imu(*it);
+    tracker.observe(f);
   }
-  return tracker.finish(*f);
+  return tracker.finish(f);
 }
 
 namespace {
@@ -114,7 +121,7 @@ OutageResult rerun_with_outage(const std::vector<ImuIncrement>& imu, const std::
   cb.on_epoch = [&](const est::NavFilter& nf) {
     if (nf.state().t_s > w.start_s) tracker.observe(nf);
   };
-  est::run_navigation(imu, cut, c, f, cb);
+  est::run_navigation(imu, cut, c, f, cb, nullptr, &o.others);
   return tracker.finish(f);
 }
 
@@ -163,9 +170,10 @@ OutageRun run_outages(const std::vector<ImuIncrement>& imu, const std::vector<Gn
   est::RunCallbacks cb;
   cb.on_epoch = [&](const est::NavFilter& f) {
     uncut.push_back(sample_of(f.state()));
-    // The fix at the start epoch has been applied once the IMU has reached it.
+    // The fix at the start epoch has been applied once the IMU has reached it; the ones after it that the
+    // run has already queued are the outage's.
     while (checkpoints.size() < starts.size() && f.state().t_s + kEpochTolerance_s >= starts[checkpoints.size()])
-      checkpoints.push_back(capture_checkpoint(f));
+      checkpoints.push_back(capture_checkpoint(f, starts[checkpoints.size()]));
   };
   int last_percent = -10;
   cb.on_progress = [&](double done) {
@@ -174,12 +182,9 @@ OutageRun run_outages(const std::vector<ImuIncrement>& imu, const std::vector<Gn
       say("outage: uncut run " + std::to_string(last_percent) + " %");
     }
   };
-  const est::RunSummary summary = est::run_navigation(imu, gnss, cfg, uncut_filter, cb);
+  const est::RunSummary summary = est::run_navigation(imu, gnss, cfg, uncut_filter, cb, nullptr, &o.others);
   run.imu_samples = summary.imu_samples;
   run.uncut_run_s = seconds_since(t0);
-  std::set<std::string> lost;
-  for (const auto& c : checkpoints) lost.insert(c.not_carried.begin(), c.not_carried.end());
-  run.not_carried.assign(lost.begin(), lost.end());
   const NavSeries uncut_series(std::move(uncut));
   const NavSeries& reference = truth.empty() ? uncut_series : truth;
 

@@ -12,6 +12,7 @@
 #include "common/formats/kfgins_config.hpp"
 #include "estimator/ins/nav_state.hpp"
 #include "estimator/options.hpp"
+#include "estimator/update/observation.hpp"
 #include "toolbox/assess/nav_difference.hpp"
 #include "toolbox/assess/outage_plan.hpp"
 
@@ -27,6 +28,8 @@ struct OutageRunOptions {
   // (what a user cutting the GNSS file would get); costs a whole run per outage.
   bool exact_rerun = false;
   std::function<void(const std::string&)> progress;  // human-readable progress lines
+  // Other sensors' readings (odometer with --aid odometer), time order; they go on during the outages.
+  std::vector<est::ObservationPtr> others;
 };
 
 struct DriftPoint {
@@ -50,7 +53,6 @@ struct OutageResult {
 struct OutageRun {
   std::string reference;  // "truth" or "uncut solution"
   std::vector<OutageResult> outages;  // sorted by length, then start
-  std::vector<std::string> not_carried;  // checkpoint limitations met (filter_checkpoint.hpp)
   double uncut_run_s = 0.0, outages_run_s = 0.0;  // wall time
   long imu_samples = 0;
   int threads = 1;

@@ -77,11 +77,6 @@ void print_outage_table(std::FILE* out, const OutageRun& run, const std::vector<
   for (const OutageLengthSummary& s : summary)
     std::fprintf(out, "%6.0f s | %9.0f%% %7.0f%% %7.0f%% | %14.3f\n", s.length_s, 100 * s.inside_3sigma_pos,
                  100 * s.inside_3sigma_vel, 100 * s.inside_3sigma_att, s.mean_3sigma_horizontal_m);
-  if (!run.not_carried.empty()) {
-    std::fprintf(out, "\nnote: restarting from checkpoints does not carry:");
-    for (const auto& n : run.not_carried) std::fprintf(out, " %s;", n.c_str());
-    std::fprintf(out, "\n");
-  }
 }
 
 namespace {
@@ -157,9 +152,6 @@ std::string outage_json(const OutageRun& run, const std::vector<OutageLengthSumm
     outs += (k ? ",\n" : "\n") + j.str();
   }
   o.add_raw("outages", outs + "]");
-  std::string notes = "[";
-  for (size_t k = 0; k < run.not_carried.size(); ++k) notes += (k ? "," : "") + json_string(run.not_carried[k]);
-  o.add_raw("not_carried", notes + "]");
   return o.str() + "\n";
 }
 

@@ -35,7 +35,9 @@ void run_outage(OutageArgs& a) {
                  in.description.c_str());
     a.run.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
   }
-  const assess::OutageRun run = assess::run_outages(in.imu, in.gnss, in.config, in.options, truth, a.run);
+  assess::OutageRunOptions run_options = a.run;
+  run_options.others = in.other_observations;
+  const assess::OutageRun run = assess::run_outages(in.imu, in.gnss, in.config, in.options, truth, run_options);
   const auto summary = assess::summarise_outages(run);
   assess::print_outage_table(stdout, run, summary);
   std::printf("\n%zu outages on %d threads: uncut run %.1f s, outages %.1f s (%ld IMU samples)\n", run.outages.size(),

@@ -1,0 +1,232 @@
+// Replay with Debian's own lcm-logplayer (issue 16; DESIGN.md: "lcm-logger records everything; lcm-logplayer
+// replays it"). A short live run of the whole vehicle system (the simulated IMU time-stamp unit and GNSS
+// receiver on ptys in real time, imu_acq, gnss_link, fusion, tspi_pub, the bus logger) is recorded; then
+// lcm-logplayer plays its inputs (IMU, GNSS_SOLUTION, GNSS_PPS) at twice real time into a freshly started
+// fusion with the same configuration and a fresh tspi_pub, the logger records what fusion publishes, and:
+//  - the replayed NAV equals the live NAV epoch for epoch: fusion's output depends only on its inputs and
+//    their order (late fixes rewind the filter, so a NAV is the state given the fixes that had arrived; the
+//    log keeps the arrival order and lcm-logplayer keeps the log's order), not on their timing;
+//  - a remote subscriber on the TSPI group receives the replayed TSPI, each equal to the replayed NAV at its epoch.
+// The channel expression is grouped: LCM anchors it as ^(...)$; `IMU|GNSS_SOLUTION|GNSS_PPS` would anchor only
+// its ends (^IMU matches IMU_PPS and IMU_TIMING too).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include "common/geo/earth_model.hpp"
+#include "sim/simulator.hpp"
+#include "tests/integration/vehicle_rig.hpp"
+
+using namespace ldv;
+namespace fs = std::filesystem;
+
+namespace {
+const std::string kBin = LDV_BIN_DIR;
+const std::string kBusUrl = "udpm://239.255.76.67:7667?ttl=0";
+const std::string kTspiUrl = "udpm://239.255.77.1:7668?ttl=1";
+const std::string kLogplayer = "/usr/bin/lcm-logplayer";
+constexpr double kDriveDuration_s = 40.0;
+
+const char* kScenario = R"(name: logplayer_drive
+description: "a short static start, then straights and turns at 10 m/s"
+start: {lat_deg: 32.8801, lon_deg: -117.2340, h_m: 100, yaw_deg: 20}
+segments:
+  - {type: static, duration_s: 8}
+  - {type: accelerate, to_speed_mps: 10, duration_s: 5}
+loop:
+  - {type: straight, duration_s: 5}
+  - {type: turn, angle_deg: 90, duration_s: 7}
+  - {type: straight, duration_s: 4}
+  - {type: turn, angle_deg: -120, duration_s: 8}
+)";
+
+// Every message of one channel in an LCM log, decoded, in log order.
+template <class Msg>
+std::vector<Msg> read_channel(const std::string& path, const std::string& channel) {
+  std::vector<Msg> out;
+  lcm::LogFile log(path, "r");
+  if (!log.good()) return out;
+  while (const lcm::LogEvent* e = log.readNextEvent()) {
+    if (e->channel != channel) continue;
+    Msg m;
+    if (m.decode(e->data, 0, e->datalen) >= 0) out.push_back(m);
+  }
+  return out;
+}
+
+// Events per channel in an LCM log.
+std::map<std::string, long> channel_counts(const std::string& path) {
+  std::map<std::string, long> out;
+  lcm::LogFile log(path, "r");
+  if (!log.good()) return out;
+  while (const lcm::LogEvent* e = log.readNextEvent()) ++out[e->channel];
+  return out;
+}
+
+Geodetic position_of(const ldv_lcm::nav_state_t& m) { return {m.lat_deg * kDegToRad, m.lon_deg * kDegToRad, m.height_m}; }
+
+bool contiguous(const std::vector<ldv_lcm::nav_state_t>& v) {
+  for (size_t i = 1; i < v.size(); ++i)
+    if (v[i].seq != v[i - 1].seq + 1) return false;
+  return !v.empty() && v.front().seq == 0;
+}
+}  // namespace
+
+TEST(LogplayerReplay, GivenALiveRunsLog_WhenLcmLogplayerReplaysItsInputsIntoAFreshFusion_ThenNavEqualsTheLiveNavAndTspiReachesARemoteSubscriber) {
+  const fs::path dir = fs::temp_directory_path() / ("ldv_logplayer_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "sim");
+  std::ofstream(dir / "scenario.yaml") << kScenario;
+
+  // Given a tactical-grade drive whose GPS time starts a little after now (a vehicle's host clock is GPS time)
+  const double start_total_s = std::ceil(test::gps_total_seconds_now() + 10.0);
+  sim::SimRequest req;
+  req.grade = "hg1700";
+  req.seed = 16;
+  req.duration_s = kDriveDuration_s;
+  req.scenario = (dir / "scenario.yaml").string();
+  req.gnss_rate_hz = 5.0;
+  req.gps_week = static_cast<int>(start_total_s / kSecondsPerWeek);
+  req.start_sow_s = start_total_s - req.gps_week * kSecondsPerWeek;
+  if (req.start_sow_s + kDriveDuration_s + 5 > kSecondsPerWeek) GTEST_SKIP() << "too close to the end of the GPS week";
+  sim::SimResult sim = sim::simulate(req);
+  sim::write_outputs(sim, (dir / "sim").string());
+  double first_chunk_sow = 0;
+  {
+    std::ifstream in(dir / "sim" / "device_schedule.txt");
+    for (std::string line; std::getline(in, line);)
+      if (!line.empty() && line[0] != '#') {
+        first_chunk_sow = std::stod(line);
+        break;
+      }
+  }
+  const double start_delay_s = req.gps_week * kSecondsPerWeek + first_chunk_sow - test::gps_total_seconds_now();
+  ASSERT_GT(start_delay_s, 1.0) << "the simulation took longer than the lead time";
+
+  // And the services configured as deployed (fusion without a warm-start file: a replay started within
+  // warm_start_max_age_s of the live run would resume from the live run's last state instead of aligning)
+  const std::string imu_tty = (dir / "imu_tty").string(), gnss_tty = (dir / "gnss_tty").string();
+  std::ofstream(dir / "imu_acq.yaml") << "bus_url: \"" << kBusUrl << "\"\ninput: {type: serial, serial: {device: " << imu_tty
+                                      << ", baud: 460800}}\nprotocol: tsu\ntsu: {counter_hz: 10.0e6}\nsample_rate_hz: 200\n"
+                                      << "pps: {source: device, label_refers: auto}\n";
+  std::ofstream(dir / "gnss_link.yaml") << "bus_url: \"" << kBusUrl << "\"\ninput: {type: serial, serial: {device: " << gnss_tty
+                                        << ", baud: 115200}}\nprotocol: nmea\ngps_minus_utc_s: 18\n";
+  std::ofstream(dir / "fusion.yaml") << "bus_url: \"" << kBusUrl << "\"\nkfgins_config: " << (dir / "sim" / "kfgins.yaml").string()
+                                     << "\nhistory_s: 3.0\n";
+  std::ofstream(dir / "tspi_pub.yaml") << "bus_url: \"" << kBusUrl << "\"\ntspi: {rate_hz: 20, group: 239.255.77.1, port: 7668, ttl: 1}\n";
+  auto service = [&](const std::string& name, const std::string& log_name) {
+    return test::start_logged(kBin + "/" + name, {"--config", (dir / (name + ".yaml")).string()}, (dir / log_name).string());
+  };
+
+  // When the live run is recorded
+  const std::string live_log = (dir / "live.lcmlog").string();
+  {
+    auto logger = test::start_logged(kBin + "/ldv_logger", {"--lcm-url", kBusUrl, live_log}, (dir / "live_logger.log").string());
+    test::BusWatch w(kBusUrl, kTspiUrl);
+    auto drive = test::start_logged(kBin + "/ldv", {"drive", (dir / "sim").string(), "--imu-link", imu_tty, "--gnss-link",
+                                                    gnss_tty, "--start-delay", std::to_string(start_delay_s - 0.1)},
+                                    (dir / "drive.log").string());
+    w.spin(0.3);
+    std::vector<std::unique_ptr<test::ChildProcess>> svc;
+    for (const char* name : {"imu_acq", "gnss_link", "fusion", "tspi_pub"}) svc.push_back(service(name, std::string("live_") + name + ".log"));
+    // Until the drive has been played and fusion has published its last NAV
+    w.spin(start_delay_s + kDriveDuration_s + 30.0, [&] { return drive->wait_exit(0.01) != 1000; });
+    w.spin(10.0, [&] { return w.nav_count > 0 && test::steady_s() - w.last_nav_rx_s > 1.5; });
+    for (auto& p : svc) p->signal(SIGTERM);
+    for (auto& p : svc) EXPECT_EQ(p->wait_exit(5.0), 0);
+    logger->signal(SIGTERM);
+    EXPECT_EQ(logger->wait_exit(5.0), 0);
+  }
+  const auto live_nav = read_channel<ldv_lcm::nav_state_t>(live_log, "NAV");
+  ASSERT_GT(live_nav.size(), 200u * 20u) << "live NAV for at least 20 s of driving (see " << dir << "/live_*.log)";
+  ASSERT_TRUE(contiguous(live_nav)) << "the live log lost NAV messages: it cannot be compared epoch for epoch";
+  const auto live_counts = channel_counts(live_log);
+  for (const char* ch : {"IMU", "GNSS_SOLUTION", "GNSS_PPS", "IMU_PPS", "IMU_TIMING"}) ASSERT_TRUE(live_counts.count(ch)) << ch;
+
+  // And lcm-logplayer replays its inputs at twice real time into a fresh fusion (and tspi_pub), recorded
+  const std::string replay_log = (dir / "replay.lcmlog").string();
+  std::vector<ldv_lcm::tspi_v1_t> remote_tspi;
+  {
+    auto logger = test::start_logged(kBin + "/ldv_logger", {"--lcm-url", kBusUrl, replay_log}, (dir / "replay_logger.log").string());
+    test::BusWatch w(kBusUrl, kTspiUrl);
+    auto fusion = service("fusion", "replay_fusion.log");
+    auto tspi = service("tspi_pub", "replay_tspi_pub.log");
+    // Play only once everybody listens (each heartbeat follows its subscriptions).
+    ASSERT_TRUE(w.spin(30.0, [&] { return w.latest("STATUS_FUSION") && w.latest("STATUS_TSPI_PUB") && w.latest("STATUS_LOGGER"); }))
+        << "heartbeats of fusion, tspi_pub and the logger within 30 s";
+    test::ChildProcess player("/bin/sh", {"-c", "exec \"$0\" \"$@\" >>'" + (dir / "logplayer.log").string() + "' 2>&1", kLogplayer,
+                                          "--lcm-url=" + kBusUrl, "-e", "(IMU|GNSS_SOLUTION|GNSS_PPS)", "--speed", "2", live_log});
+    int played = 1000;
+    w.spin(kDriveDuration_s + 60.0, [&] { return (played = player.wait_exit(0.01)) != 1000; });
+    EXPECT_EQ(played, 0) << "lcm-logplayer (see " << dir << "/logplayer.log)";
+    w.spin(10.0, [&] { return w.nav_count > 0 && test::steady_s() - w.last_nav_rx_s > 1.5; });
+    for (auto* p : {fusion.get(), tspi.get()}) p->signal(SIGTERM);
+    EXPECT_EQ(fusion->wait_exit(5.0), 0);
+    EXPECT_EQ(tspi->wait_exit(5.0), 0);
+    logger->signal(SIGTERM);
+    EXPECT_EQ(logger->wait_exit(5.0), 0);
+    for (const auto& t : w.tspi) remote_tspi.push_back(t.m);
+  }
+
+  // Then the replay carried the inputs only (the channels only the live devices and services had are absent)
+  const auto replay_counts = channel_counts(replay_log);
+  for (const char* ch : {"IMU_PPS", "IMU_TIMING", "STATUS_IMU_ACQ", "STATUS_GNSS_LINK"}) EXPECT_FALSE(replay_counts.count(ch)) << ch;
+  for (const char* ch : {"IMU", "GNSS_SOLUTION", "GNSS_PPS"})
+    EXPECT_EQ(replay_counts.count(ch) ? replay_counts.at(ch) : 0, live_counts.at(ch)) << ch << " played completely";
+
+  // And the replayed NAV is the live NAV, epoch for epoch
+  const auto replay_nav = read_channel<ldv_lcm::nav_state_t>(replay_log, "NAV");
+  ASSERT_TRUE(contiguous(replay_nav)) << "the replay log lost NAV messages";
+  EXPECT_EQ(replay_nav.size(), live_nav.size());
+  std::map<std::pair<int, double>, const ldv_lcm::nav_state_t*> replay_at;
+  for (const auto& m : replay_nav) replay_at[{m.gps_week, m.gps_sow_s}] = &m;
+  double max_pos_m = 0, max_vel_mps = 0, max_rpy_deg = 0, max_std = 0;
+  long missing = 0, status_differs = 0;
+  for (const auto& a : live_nav) {
+    const auto it = replay_at.find({a.gps_week, a.gps_sow_s});
+    if (it == replay_at.end()) {
+      ++missing;
+      continue;
+    }
+    const auto& b = *it->second;
+    max_pos_m = std::max(max_pos_m, earth::ned_between(position_of(a), position_of(b)).norm());
+    for (int i = 0; i < 3; ++i) {
+      max_vel_mps = std::max(max_vel_mps, std::abs(a.vel_ned_mps[i] - b.vel_ned_mps[i]));
+      max_rpy_deg = std::max(max_rpy_deg, std::abs(std::remainder(a.rpy_deg[i] - b.rpy_deg[i], 360.0)));
+      max_std = std::max({max_std, std::abs(double(a.pos_std_ned_m[i]) - b.pos_std_ned_m[i]),
+                          std::abs(double(a.vel_std_ned_mps[i]) - b.vel_std_ned_mps[i]),
+                          std::abs(double(a.att_std_deg[i]) - b.att_std_deg[i])});
+    }
+    status_differs += a.status != b.status || a.mode != b.mode;
+  }
+  std::printf("live NAV %zu, replayed NAV %zu (%.3f .. %.3f s of week); not replayed %ld; max difference: position %.3g m, "
+              "velocity %.3g m/s, attitude %.3g deg, a std %.3g; status or mode differs at %ld epochs\n",
+              live_nav.size(), replay_nav.size(), live_nav.front().gps_sow_s, live_nav.back().gps_sow_s, missing, max_pos_m,
+              max_vel_mps, max_rpy_deg, max_std, status_differs);
+  EXPECT_EQ(missing, 0);
+  // The same arithmetic on the same inputs in the same order: equal to the last bit (1e-9 m as for checkpoints).
+  EXPECT_LE(max_pos_m, 1e-9);
+  EXPECT_LE(max_vel_mps, 1e-12);
+  EXPECT_LE(max_rpy_deg, 1e-12);
+  EXPECT_EQ(max_std, 0.0);
+  EXPECT_EQ(status_differs, 0);
+
+  // And the remote TSPI subscriber received the replay's TSPI, each the replayed NAV of its epoch
+  ASSERT_GT(remote_tspi.size(), 20u * 20u) << "TSPI at 20 Hz for at least 20 s of driving";
+  long tspi_not_nav = 0;
+  for (size_t i = 0; i < remote_tspi.size(); ++i) {
+    const auto& t = remote_tspi[i];
+    EXPECT_EQ(t.seq, static_cast<int64_t>(i)) << "TSPI sequence from the fresh tspi_pub";
+    const auto it = replay_at.find({t.gps_week, t.gps_sow_s});
+    tspi_not_nav += it == replay_at.end() || it->second->lat_deg != t.lat_deg || it->second->lon_deg != t.lon_deg ||
+                    it->second->height_m != t.height_m;
+  }
+  std::printf("remote TSPI subscriber: %zu messages, %ld not equal to the replayed NAV of their epoch\n", remote_tspi.size(),
+              tspi_not_nav);
+  EXPECT_EQ(tspi_not_nav, 0);
+  if (!HasFailure()) fs::remove_all(dir);
+}
