@@ -44,12 +44,7 @@ std::vector<ShockEvent> draw_shocks(const std::vector<TruthSample>& truth, doubl
   return out;
 }
 
-void shock_state_at(const std::vector<ShockEvent>& events, double t, Vec3& angle, Vec3& heave) {
-  angle.setZero();
-  heave.setZero();
-  for (const ShockEvent& e : events) add_bump(e, t - e.t_start_s, angle, heave);
-}
-
+// Angle [rad] and heave velocity [m/s] of the bumps under way at run time t, vehicle axes.
 void RoadShocks::state(double t, Vec3& angle, Vec3& heave) const {
   angle.setZero();
   heave.setZero();

@@ -30,9 +30,6 @@ struct ShockEvent {
 // accel +-U[1, 4] m/s^2 (stream "shocks").
 std::vector<ShockEvent> draw_shocks(const std::vector<TruthSample>& truth, double dt_s, double per_km, uint64_t seed);
 
-// Angle [rad] and heave velocity [m/s] of all bumps at run time t, vehicle axes.
-void shock_state_at(const std::vector<ShockEvent>& events, double t_s, Vec3& angle_v_rad, Vec3& heave_v_mps);
-
 // Adds the bumps to successive increments (call in order of k).
 class RoadShocks {
  public:

@@ -31,9 +31,6 @@ class VehicleVibration {
   // Adds the vibration over the next IMU interval (ending at speed `speed_end_mps`) to `inc` (IMU body).
   void add(ImuIncrement& inc, double speed_end_mps);
 
-  // Vehicle-axes amplitudes (for the record).
-  const Vec3& accel_amplitude_v() const { return accel_amp_v_; }
-  const Vec3& gyro_amplitude_v() const { return gyro_amp_v_; }
   static EngineFrequencyLaw law() { return {}; }
   static constexpr double kRampUp_s = 1.0;  // the engine harmonic's amplitude ramp at the start
 
@@ -42,7 +39,7 @@ class VehicleVibration {
   Mat3 C_v_b_;
   double dt_, t_ = 0.0;
   Vec3 white_gyro_, white_accel_;  // added densities, body axes [u/sqrt(s)]
-  Vec3 accel_amp_v_, gyro_amp_v_;
+  Vec3 accel_amp_v_, gyro_amp_v_;  // vehicle axes
   Vec3 accel_phase_, gyro_phase_;
   double phase_ = 0.0, omega_prev_ = 0.0;
   Vec3 vel_prev_v_ = Vec3::Zero(), angle_prev_v_ = Vec3::Zero();
