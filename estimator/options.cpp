@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "estimator/effects/registry.hpp"
+#include "estimator/update/updater.hpp"
 
 namespace ldv::est {
 
@@ -170,8 +171,7 @@ void FilterOptions::check() const {
               finite_in(aids.zaru_std_rad_s, 0.0, 1.0) && finite_in(aids.odometer_std_mps, 1e-4, 100.0),
           "aids: a noise or period is not finite or out of range");
   for (const std::string& a : aids.enabled)
-    require(a == "nhc" || a == "zaru" || a == "odometer" || a == "zupt",
-            "aids: unknown aid '" + a + "' (known: nhc, zaru, odometer)");
+    require(is_aid_name(a), "aids: unknown aid '" + a + "' (known: " + aid_name_list() + ")");
 }
 
 }  // namespace ldv::est

@@ -244,19 +244,22 @@ void NavFilter::process_imu(const ImuIncrement& raw) {
 void NavFilter::run_aids() {
   if (c_.updaters.empty()) return;
   const bool gnss_recent = c_.nav.t_s - c_.last_gnss_t_s < 1.0;
+  // One linearisation point per IMU sample while no aid measures (the usual case); taken again after the
+  // covariance is brought to this epoch (which may move the effects' nominal states) and after each update.
+  LinearizationPoint lp = linearization_point();
+  const auto context = [&] {
+    return AidContext{c_.nav, lp, layout_, opt_, c_.P, c_.detector, c_.f_n_smooth_mps2, gnss_recent,
+                      c_.imu_noise_scale, faults_};
+  };
   std::vector<Measurement> measurements;
-  for (size_t i = 0; i < c_.updaters.size(); ++i) {
-    const LinearizationPoint lp = linearization_point();
-    const AidContext look{c_.nav, lp, layout_, opt_, c_.P, c_.detector, c_.f_n_smooth_mps2, gnss_recent,
-                          c_.imu_noise_scale, faults_};
-    if (!c_.updaters[i]->due(look)) continue;
+  for (UpdaterSlot& updater : c_.updaters) {
+    if (!updater->due(context())) continue;
     flush_covariance();
-    const LinearizationPoint lp_now = linearization_point();
-    const AidContext now{c_.nav, lp_now, layout_, opt_, c_.P, c_.detector, c_.f_n_smooth_mps2, gnss_recent,
-                         c_.imu_noise_scale, faults_};
+    lp = linearization_point();
     measurements.clear();
-    c_.updaters[i]->measure(now, measurements);
+    updater->measure(context(), measurements);
     for (const Measurement& m : measurements) apply_measurement(m);
+    if (!measurements.empty()) lp = linearization_point();
   }
 }
 

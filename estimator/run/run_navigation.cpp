@@ -66,9 +66,9 @@ FilterOptions options_from_kfgins(const KfGinsConfig& cfg) {
   o.zupt.enabled = ldv_key<bool>(cfg, "zupt", o.zupt.enabled);
   o.aids.enabled = ldv_key<std::vector<std::string>>(cfg, "aids", o.aids.enabled);
   for (const std::string& aid : o.aids.enabled)
-    if (aid != "nhc" && aid != "zaru" && aid != "odometer")
+    if (!is_aid_name(aid))
       throw InputError(cfg.config_path, cfg.ldv["aids"].Mark().line + 1,
-                       "key 'ldv.aids': unknown aid '" + aid + "' (expected nhc, zaru, odometer)");
+                       "key 'ldv.aids': unknown aid '" + aid + "' (expected " + aid_name_list() + ")");
   const auto vec3_key = [&](const char* key, Vec3 fallback, double scale) -> Vec3 {
     if (!has_ldv_key(cfg, key)) return fallback;
     const auto v = ldv_key<std::vector<double>>(cfg, key, {});

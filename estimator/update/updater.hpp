@@ -65,7 +65,10 @@ class UpdaterSlot {
 // The aids by name (updater_list.hpp): "zupt", "zaru", "nhc". Throws std::invalid_argument naming an
 // unknown one and the known ones.
 std::unique_ptr<Updater> make_updater(const std::string& name, const FilterOptions& options);
-std::vector<std::string> updater_names();
+// What --aid / ldv.aids accept: the registered updaters but zupt (on unless ldv.zupt: false), and "odometer".
+std::vector<std::string> aid_names();
+bool is_aid_name(const std::string& name);
+std::string aid_name_list();  // "nhc, zaru, odometer"
 // The updaters a filter with these options runs: zupt when options.zupt.enabled, then options.aids.enabled
 // (except "odometer", which is an external sensor: estimator/update/odometer.hpp).
 std::vector<UpdaterSlot> make_updaters(const FilterOptions& options);

@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <stdexcept>
+#include <string_view>
 
 #include "estimator/update/updater.hpp"
 
@@ -21,25 +22,36 @@ constexpr Entry kUpdaters[] = {
 };
 }  // namespace
 
-std::vector<std::string> updater_names() {
+std::vector<std::string> aid_names() {
   std::vector<std::string> names;
-  for (const Entry& e : kUpdaters) names.emplace_back(e.name);
+  for (const Entry& e : kUpdaters)
+    if (std::string_view(e.name) != "zupt") names.emplace_back(e.name);
+  names.emplace_back("odometer");  // an external sensor (odometer.hpp), not an updater
   return names;
+}
+
+bool is_aid_name(const std::string& name) {
+  const std::vector<std::string> names = aid_names();
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+std::string aid_name_list() {
+  std::string list;
+  for (const std::string& n : aid_names()) list += (list.empty() ? "" : ", ") + n;
+  return list;
 }
 
 std::unique_ptr<Updater> make_updater(const std::string& name, const FilterOptions& options) {
   for (const Entry& e : kUpdaters)
     if (name == e.name) return e.make(options);
-  std::string known;
-  for (const Entry& e : kUpdaters) known += (known.empty() ? "" : ", ") + std::string(e.name);
-  throw std::invalid_argument("unknown aid '" + name + "' (known: " + known + ", odometer)");
+  throw std::invalid_argument("unknown aid '" + name + "' (known: " + aid_name_list() + ")");
 }
 
 std::vector<UpdaterSlot> make_updaters(const FilterOptions& options) {
   std::vector<UpdaterSlot> slots;
   if (options.zupt.enabled) slots.emplace_back(make_updater("zupt", options));
   for (const std::string& aid : options.aids.enabled)
-    if (aid != "odometer" && aid != "zupt") slots.emplace_back(make_updater(aid, options));
+    if (aid != "odometer") slots.emplace_back(make_updater(aid, options));
   return slots;
 }
 

@@ -1,5 +1,8 @@
-// Report section: GNSS / ZUPT innovations against their predicted 3-sigma, and NIS statistics.
+// Report section: every sensor's innovations (GNSS, ZUPT, the aids) against their predicted 3-sigma, and NIS
+// statistics. The innovations file has three columns whatever the sensor; rows a sensor does not have are 0.
 #include <map>
+#include <string>
+#include <vector>
 
 #include "toolbox/assess/gnuplot_figure.hpp"
 #include "common/plot/gnuplot.hpp"
@@ -7,6 +10,22 @@
 #include "toolbox/assess/report_sections.hpp"
 
 namespace ldv::assess {
+namespace {
+
+// What each row of a sensor's innovation is (estimator/filter/records.hpp) and its unit.
+struct RowLabels {
+  std::vector<std::string> names;
+  std::string unit;
+};
+RowLabels row_labels(const std::string& sensor) {
+  if (sensor == "gnss_position") return {{"north", "east", "down"}, "m"};
+  if (sensor == "zaru") return {{"x", "y", "z"}, "rad/s"};
+  if (sensor == "nhc") return {{"lateral", "vertical"}, "m/s"};
+  if (sensor == "odometer") return {{"forward"}, "m/s"};
+  return {{"north", "east", "down"}, "m/s"};  // gnss_velocity, zupt
+}
+
+}  // namespace
 
 void add_innovation_section(HtmlPage& page, const std::string& dir, const ReportInputs& in) {
   const std::vector<InnovationRow> rows = read_innovations_file(in.innovations);
@@ -15,7 +34,8 @@ void add_innovation_section(HtmlPage& page, const std::string& dir, const Report
   std::map<std::string, std::vector<const InnovationRow*>> by_kind;
   for (const auto& r : rows) by_kind[r.kind].push_back(&r);
   const double t0 = rows.front().t_s;
-  HtmlTable stats{"NIS per measurement (3 dof: mean 3 when consistent)", {"measurement", "count", "accepted %", "mean NIS", "RMS N", "RMS E", "RMS D"}, {}};
+  HtmlTable stats{"NIS per measurement (mean = the measurement's rows when consistent)",
+                  {"measurement", "count", "accepted %", "mean NIS", "RMS row 1", "RMS row 2", "RMS row 3"}, {}};
   for (const auto& [kind, list] : by_kind) {
     double nis = 0, accepted = 0;
     Vec3 sq = Vec3::Zero();
@@ -26,8 +46,12 @@ void add_innovation_section(HtmlPage& page, const std::string& dir, const Report
     }
     const double n = static_cast<double>(list.size());
     const Vec3 rms = (sq / n).cwiseSqrt();
-    stats.rows.push_back({kind, std::to_string(list.size()), fixed(100 * accepted / n, 1), fixed(nis / n, 2), fixed(rms(0), 4),
-                          fixed(rms(1), 4), fixed(rms(2), 4)});
+    const RowLabels labels = row_labels(kind);
+    std::vector<std::string> row = {kind, std::to_string(list.size()), fixed(100 * accepted / n, 1), fixed(nis / n, 2)};
+    for (size_t k = 0; k < 3; ++k)
+      row.push_back(k < labels.names.size() ? labels.names[k] + " " + fixed(rms(static_cast<int>(k)), 4) + " " + labels.unit
+                                            : std::string("-"));
+    stats.rows.push_back(row);
   }
   bool first = true;
   for (const auto& [kind, list] : by_kind) {
@@ -38,15 +62,16 @@ void add_innovation_section(HtmlPage& page, const std::string& dir, const Report
       i0.push_back(r.innovation(0)), i1.push_back(r.innovation(1)), i2.push_back(r.innovation(2));
       s0.push_back(3 * r.sqrt_S(0)), s1.push_back(3 * r.sqrt_S(1)), s2.push_back(3 * r.sqrt_S(2));
     }
-    const std::string unit = kind == "gnss_position" ? "m" : "m/s";
-    GnuplotFigure fig(dir, "innovations_" + kind, 1000, 600);
+    const RowLabels labels = row_labels(kind);
+    const int rows = static_cast<int>(labels.names.size());
+    GnuplotFigure fig(dir, "innovations_" + kind, 1000, 200 * rows);
     const std::string d = fig.add_data({t, i0, i1, i2, s0, s1, s2});
-    fig.add("set multiplot layout 3,1 title " + plot::gnuplot_label(kind + " innovations [" + unit + "]") + "\nset lmargin 12\nset rmargin 22");
-    const char* axis[3] = {"north", "east", "down"};
-    for (int k = 0; k < 3; ++k) {
+    fig.add("set multiplot layout " + std::to_string(rows) + ",1 title " +
+            plot::gnuplot_label(kind + " innovations [" + labels.unit + "]") + "\nset lmargin 12\nset rmargin 22");
+    for (int k = 0; k < rows; ++k) {
       const std::string c = std::to_string(2 + k), s = std::to_string(5 + k);
-      fig.add(std::string("set ylabel '") + axis[k] + " [" + unit + "]'");
-      fig.add(k == 2 ? "set xlabel 'time since first measurement [s]'" : "unset xlabel");
+      fig.add("set ylabel " + plot::gnuplot_label(labels.names[k] + " [" + labels.unit + "]"));
+      fig.add(k == rows - 1 ? "set xlabel 'time since first measurement [s]'" : "unset xlabel");
       fig.add("plot '" + d + "' using 1:" + c + " with points pt 7 ps 0.3 lc rgb '#1f77b4' title 'innovation', '" + d +
               "' using 1:" + s + " with lines lw 0.8 lc rgb '#d62728' title '+3 sqrt(S)', '" + d + "' using 1:(-$" + s +
               ") with lines lw 0.8 lc rgb '#d62728' title '-3 sqrt(S)'");

@@ -3,6 +3,7 @@
 // toolbox/assess/nav_inputs.hpp).
 #include <CLI/CLI.hpp>
 
+#include "estimator/update/updater.hpp"
 #include "toolbox/assess/nav_inputs.hpp"
 
 namespace ldv::cli {
@@ -43,7 +44,7 @@ inline void add_nav_input_options(CLI::App* c, assess::NavInputArgs& in, bool co
   c->add_option("--aid", in.aids,
                 "land-vehicle aid (repeatable): nhc (non-holonomic constraint), zaru (zero angular rate at stops), "
                 "odometer (wheel speed from --odometer or ldv.odopath); default ldv.aids, else none")
-      ->check(CLI::IsMember({"nhc", "zaru", "odometer"}));
+      ->check(CLI::IsMember(est::aid_names()));
   c->add_option("--odometer", in.odometer,
                 "odometer speeds: text file, one line per reading 'sow speed_mps' (default ldv.odopath)");
   c->add_flag("--strict", in.strict,
