@@ -36,8 +36,11 @@ FilterOptions::FilterOptions() {
                        Vec3::Constant(1e-6), Vec3::Constant(1e-8)};
   // A box bolted in by hand sits within a few degrees of the axes it was meant to; the odometer point is
   // given or estimated within a metre.
-  vehicle_mounting = {Vec3::Zero(), Vec3::Constant(3.0 * kDegToRad), BlockOptions::Process::kConstant, Vec3::Zero(), 3600.0, Vec3::Zero()};
-  odometer_lever_arm = {Vec3::Zero(), Vec3::Constant(1.0), BlockOptions::Process::kConstant, Vec3::Zero(), 3600.0, Vec3::Zero()};
+  vehicle_mounting = {
+      Vec3::Zero(), Vec3::Constant(3.0 * kDegToRad), BlockOptions::Process::kConstant, Vec3::Zero(), 3600.0,
+      Vec3::Zero()};
+  odometer_lever_arm = {Vec3::Zero(), Vec3::Constant(1.0), BlockOptions::Process::kConstant, Vec3::Zero(),
+                        3600.0,       Vec3::Zero()};
 }
 
 bool AidOptions::has(const std::string& name) const {
@@ -135,13 +138,18 @@ void check_block(const BlockOptions& b, const std::string& name) {
 void FilterOptions::check() const {
   require(finite_in(arw_rad_per_sqrt_s, 0.0, 1.0), "arw: must be in [0, 1] rad/sqrt(s)");
   require(finite_in(vrw_mps_per_sqrt_s, 0.0, 100.0), "vrw: must be in [0, 100] m/s/sqrt(s)");
-  const std::pair<const BlockOptions*, const char*> blocks[] = {
-      {&gyro_bias, "gyro_bias"},         {&accel_bias, "accel_bias"},
-      {&gyro_scale, "gyro_scale"},       {&accel_scale, "accel_scale"},
-      {&gyro_misalignment, "gyro_misalignment"}, {&accel_misalignment, "accel_misalignment"},
-      {&g_sensitivity, "g_sensitivity"}, {&lever_arm, "lever_arm"},
-      {&gravity_anomaly, "gravity_anomaly"}, {&gnss_position_bias, "gnss_position_bias"},
-      {&vehicle_mounting, "vehicle_mounting"}, {&odometer_lever_arm, "odometer_lever_arm"}};
+  const std::pair<const BlockOptions*, const char*> blocks[] = {{&gyro_bias, "gyro_bias"},
+                                                                {&accel_bias, "accel_bias"},
+                                                                {&gyro_scale, "gyro_scale"},
+                                                                {&accel_scale, "accel_scale"},
+                                                                {&gyro_misalignment, "gyro_misalignment"},
+                                                                {&accel_misalignment, "accel_misalignment"},
+                                                                {&g_sensitivity, "g_sensitivity"},
+                                                                {&lever_arm, "lever_arm"},
+                                                                {&gravity_anomaly, "gravity_anomaly"},
+                                                                {&gnss_position_bias, "gnss_position_bias"},
+                                                                {&vehicle_mounting, "vehicle_mounting"},
+                                                                {&odometer_lever_arm, "odometer_lever_arm"}};
   for (const auto& [b, name] : blocks) check_block(*b, name);
   require(lever_arm.init.norm() <= 1000.0, "lever_arm: longer than 1000 m");
   require(finite_in(time_offset_init_s, -100.0, 100.0), "time_offset: must be within +-100 s");

@@ -51,8 +51,8 @@ struct ZuptOptions {
 struct AidOptions {
   std::vector<std::string> enabled;
   Vec3 mounting_rpy_rad = Vec3::Zero();
-  double nhc_std_mps = 0.1;     // lateral/vertical velocity a real car has (slip, suspension)
-  double nhc_period_s = 0.1;    // at most this often (vibration makes successive ones correlated)
+  double nhc_std_mps = 0.1;                  // lateral/vertical velocity a real car has (slip, suspension)
+  double nhc_period_s = 0.1;                 // at most this often (vibration makes successive ones correlated)
   double zaru_std_rad_s = 0.01 * kDegToRad;  // what the static detector lets through, beyond white noise
   double odometer_std_mps = 0.05;
   bool has(const std::string& name) const;

@@ -124,11 +124,11 @@ GnssRun simulate_gnss(const MotionProfile& m, const std::vector<TruthSample>& tr
     if (!jump.isZero()) run.outliers.push_back({t_label_sow, jump});
     f.pos_std_ned_m = pos_std;
     f.has_velocity = sch.with_velocity;
-    const Vec3 vel_n = sch.velocity_lag_s > 0.0
-                           ? antenna_truth_at(m, truth, dt, std::clamp(t_meas - sch.velocity_lag_s, 0.0, t_end),
-                                              sch.lever_arm_b_m)
-                                 .vel_n_mps
-                           : ant.vel_n_mps;
+    const Vec3 vel_n =
+        sch.velocity_lag_s > 0.0
+            ? antenna_truth_at(m, truth, dt, std::clamp(t_meas - sch.velocity_lag_s, 0.0, t_end), sch.lever_arm_b_m)
+                  .vel_n_mps
+            : ant.vel_n_mps;
     f.vel_n_mps = vel_n + sch.velocity_noise_factor * w_vel;
     f.vel_std_n_mps = vel_std;
     f.quality = level.quality;

@@ -35,9 +35,9 @@ struct GnssSchedule {
   double latency_mean_s = 0.08, latency_jitter_s = 0.01;  // solution available after its epoch
   bool with_velocity = false;
   bool with_noise = true;
-  double velocity_lag_s = 0.0;           // the velocity is the antenna's at (measurement time - lag)
-  double velocity_noise_factor = 1.0;    // simulated velocity noise = factor x the stated std
-  double outlier_rate = 0.0;             // fraction of epochs with a 1-3 m jump (stream "gnss_outliers")
+  double velocity_lag_s = 0.0;         // the velocity is the antenna's at (measurement time - lag)
+  double velocity_noise_factor = 1.0;  // simulated velocity noise = factor x the stated std
+  double outlier_rate = 0.0;           // fraction of epochs with a 1-3 m jump (stream "gnss_outliers")
 };
 
 // A single-epoch position jump (quality and stated std unchanged).

@@ -64,7 +64,7 @@ Kinematics kinematics_at(const MotionProfile& m, double t) {
   const double sp = std::sin(p.value), cp = std::cos(p.value);
   const double sy = std::sin(k.vehicle_rpy_rad.z()), cy = std::cos(k.vehicle_rpy_rad.z());
   k.C_v_n << cp * cy, -cr * sy + sr * sp * cy, sr * sy + cr * sp * cy,  //
-      cp * sy, cr * cy + sr * sp * sy, -sr * cy + cr * sp * sy,        //
+      cp * sy, cr * cy + sr * sp * sy, -sr * cy + cr * sp * sy,         //
       -sp, sr * cp, cr * cp;
   const double dp = p.rate, dy = yr.value, dr = roll_rate;
   // ZYX Euler rates to the vehicle rate relative to NED, in vehicle axes.

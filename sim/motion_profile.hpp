@@ -67,11 +67,11 @@ struct MotionProfile {
 // Kinematics at run time t, independent of position. rpy, omega_nb_b and C_b_n are the IMU body's
 // (the vehicle's when not mounted); C_v_n and vehicle_rpy the vehicle's.
 struct Kinematics {
-  Vec3 rpy_rad = Vec3::Zero();        // IMU body; yaw unwrapped (continuous) when not mounted
+  Vec3 rpy_rad = Vec3::Zero();          // IMU body; yaw unwrapped (continuous) when not mounted
   Vec3 vehicle_rpy_rad = Vec3::Zero();  // yaw unwrapped
   Vec3 vehicle_rpy_rate_rad_s = Vec3::Zero();
   double speed_mps = 0.0, accel_mps2 = 0.0;  // along the path (along vehicle x without slip)
-  double slip_rad = 0.0;              // angle from vehicle x to the velocity, about vehicle z
+  double slip_rad = 0.0;                     // angle from vehicle x to the velocity, about vehicle z
   Vec3 v_n_mps = Vec3::Zero();
   Vec3 dv_n_dt_mps2 = Vec3::Zero();   // time derivative of the NED velocity components
   Vec3 omega_nb_b_rad_s = Vec3::Zero();

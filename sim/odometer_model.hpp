@@ -25,7 +25,7 @@ struct OdometerModel {
 double odometer_true_speed_at(const MotionProfile& m, const std::vector<TruthSample>& truth, double dt_s, double t_s,
                               const Vec3& lever_arm_b_m);
 
-std::vector<OdometerSample> simulate_odometer(const MotionProfile& m, const std::vector<TruthSample>& truth, double dt_s,
-                                              const OdometerModel& model, uint64_t seed);
+std::vector<OdometerSample> simulate_odometer(const MotionProfile& m, const std::vector<TruthSample>& truth,
+                                              double dt_s, const OdometerModel& model, uint64_t seed);
 
 }  // namespace ldv::sim

@@ -20,7 +20,7 @@ struct ShockEvent {
   double t_start_s = 0.0;  // run time
   double duration_s = 0.0;
   double roll_rate_peak_rad_s = 0.0, pitch_rate_peak_rad_s = 0.0;  // vehicle x, y
-  double vertical_accel_peak_mps2 = 0.0;                            // vehicle z (down +)
+  double vertical_accel_peak_mps2 = 0.0;                           // vehicle z (down +)
   double omega_rad_s() const;
   double tau_s() const;
 };

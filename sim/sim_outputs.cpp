@@ -40,12 +40,13 @@ void write_vehicle_events(YAML::Emitter& e, const SimResult& r) {
   const double t0 = r.request.start_sow_s;
   if (r.realism.shocks_per_km > 0.0) {
     e << YAML::Key << "shock_events"
-      << YAML::Comment("t_sow [s], duration [s], roll rate peak, pitch rate peak [deg/s] (vehicle x, y), "
-                       "vertical accel peak [m/s^2] (vehicle z, down +): sim/road_shocks.hpp");
+      << YAML::Comment(
+             "t_sow [s], duration [s], roll rate peak, pitch rate peak [deg/s] (vehicle x, y), "
+             "vertical accel peak [m/s^2] (vehicle z, down +): sim/road_shocks.hpp");
     e << YAML::Value << YAML::BeginSeq;
     for (const ShockEvent& s : r.shocks)
-      e << flow({t0 + s.t_start_s, s.duration_s, s.roll_rate_peak_rad_s * kRadToDeg, s.pitch_rate_peak_rad_s * kRadToDeg,
-                 s.vertical_accel_peak_mps2});
+      e << flow({t0 + s.t_start_s, s.duration_s, s.roll_rate_peak_rad_s * kRadToDeg,
+                 s.pitch_rate_peak_rad_s * kRadToDeg, s.vertical_accel_peak_mps2});
     e << YAML::EndSeq;
   }
   if (r.realism.gnss_outlier_rate > 0.0) {

@@ -117,8 +117,8 @@ TriadSensorModel triad_model(const TriadErrorModel& g, const EffectSet& fx, cons
 std::vector<double> as_vector(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
 // The vehicle effects that are on, SI (units: find_realism_quantity / effect_table).
-void record_vehicle_effects(const VehicleRealism& v, const ImuGrade& grade, double odometer_scale,
-                            bool scale_given, SimResult& res) {
+void record_vehicle_effects(const VehicleRealism& v, const ImuGrade& grade, double odometer_scale, bool scale_given,
+                            SimResult& res) {
   auto& e = res.injected_effects;
   if (v.vibration_factor > 0.0) {
     e["vibration_white_factor"] = {v.vibration_factor};

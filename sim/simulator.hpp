@@ -71,17 +71,17 @@ struct SimResult {
   std::vector<ImuBiasSample> imu_bias_history;  // 1 Hz: total true bias (constant + moving parts)
   std::string grade_source;
   std::string scenario_name;
-  VehicleRealism realism;                      // the vehicle effects as simulated (preset draws resolved)
-  std::vector<OdometerSample> odometer;        // odo.txt (empty without the odometer)
-  std::vector<ShockEvent> shocks;              // road bumps (run time)
-  std::vector<GnssOutlier> gnss_outliers;      // position jumps
+  VehicleRealism realism;                  // the vehicle effects as simulated (preset draws resolved)
+  std::vector<OdometerSample> odometer;    // odo.txt (empty without the odometer)
+  std::vector<ShockEvent> shocks;          // road bumps (run time)
+  std::vector<GnssOutlier> gnss_outliers;  // position jumps
 };
 
 SimResult simulate(const SimRequest& req, const std::function<void(double fraction)>& progress = {});
 
 // Writes imu.txt gnss.txt truth.nav kfgins.yaml truth_effects.yaml truth_errors.txt gnss.pos
-// imu_device.bin gnss.nmea (odo.txt with the odometer, datasheet.yaml with --realism vehicle) into out_dir, all-or-nothing (a temporary directory beside it, then moved).
-// Sets result.kfgins paths (absolute, into out_dir).
+// imu_device.bin gnss.nmea (odo.txt with the odometer, datasheet.yaml with --realism vehicle) into out_dir,
+// all-or-nothing (a temporary directory beside it, then moved). Sets result.kfgins paths (absolute, into out_dir).
 void write_outputs(SimResult& result, const std::string& out_dir);
 
 }  // namespace ldv::sim

@@ -16,28 +16,28 @@ namespace ldv::sim {
 // As requested (engineering units at the edges, as on the command line). Unset = off, or drawn by
 // `realism = "vehicle"`.
 struct VehicleOptions {
-  std::string realism = "none";                  // none | vehicle
-  std::optional<double> vibration_factor;        // installed white noise = factor x the grade's ARW/VRW (>= 1)
-  double engine_accel_mps2 = 0.3;                // engine harmonic amplitude, vehicle z (x, y: half)
-  double engine_gyro_dps = 0.2;                  // engine harmonic amplitude, vehicle x and y (z: half)
-  std::optional<double> shocks_per_km;           // road bumps per km travelled
-  std::optional<double> imu_latency_s;           // IMU time tag = true sample time + latency
-  std::optional<Vec3> mounting_rpy_deg;          // C_b_v = Rz(yaw) Ry(pitch) Rx(roll)
-  std::optional<double> gnss_velocity_lag_s;     // GNSS velocity is the one at epoch - lag
+  std::string realism = "none";                      // none | vehicle
+  std::optional<double> vibration_factor;            // installed white noise = factor x the grade's ARW/VRW (>= 1)
+  double engine_accel_mps2 = 0.3;                    // engine harmonic amplitude, vehicle z (x, y: half)
+  double engine_gyro_dps = 0.2;                      // engine harmonic amplitude, vehicle x and y (z: half)
+  std::optional<double> shocks_per_km;               // road bumps per km travelled
+  std::optional<double> imu_latency_s;               // IMU time tag = true sample time + latency
+  std::optional<Vec3> mounting_rpy_deg;              // C_b_v = Rz(yaw) Ry(pitch) Rx(roll)
+  std::optional<double> gnss_velocity_lag_s;         // GNSS velocity is the one at epoch - lag
   std::optional<double> gnss_velocity_noise_factor;  // simulated velocity noise / stated std
-  std::optional<double> gnss_outlier_rate;       // fraction of epochs with a 1-3 m jump
-  bool odometer = false;                         // write odo.txt
+  std::optional<double> gnss_outlier_rate;           // fraction of epochs with a 1-3 m jump
+  bool odometer = false;                             // write odo.txt
   double odo_rate_hz = 50.0;
-  Vec3 odo_lever_arm_b_m = Vec3::Zero();         // odometer point (rear-axle centre) minus IMU, IMU body axes
-  double odo_noise_mps = 0.02;                   // white noise std per sample
-  double odo_quantum_mps = 0.0;                  // speed resolution (0: none)
-  double wheel_slip_deg_per_mps2 = 0.0;          // side slip per lateral acceleration (0: none)
+  Vec3 odo_lever_arm_b_m = Vec3::Zero();  // odometer point (rear-axle centre) minus IMU, IMU body axes
+  double odo_noise_mps = 0.02;            // white noise std per sample
+  double odo_quantum_mps = 0.0;           // speed resolution (0: none)
+  double wheel_slip_deg_per_mps2 = 0.0;   // side slip per lateral acceleration (0: none)
 };
 
 // Resolved, SI, every quantity decided (0 = off). Built by resolve_vehicle_options.
 struct VehicleRealism {
   bool realism_vehicle = false;
-  double vibration_factor = 0.0;                 // 0: no vibration
+  double vibration_factor = 0.0;  // 0: no vibration
   double engine_accel_mps2 = 0.0, engine_gyro_rad_s = 0.0;
   double shocks_per_km = 0.0;
   double imu_latency_s = 0.0;

@@ -21,14 +21,14 @@ std::vector<OdometerSample> read_odometer_text(const std::string& path) {
     const int n = scan_numeric_line(text, v, 2, &err);
     if (n == 0) continue;
     if (n < 0) throw InputError(path, line, "expected 'sow speed_mps' (2 numbers): " + err.message());
-    if (n != 2)
-      throw InputError(path, line, "expected 2 columns 'sow speed_mps', found " + std::to_string(n));
+    if (n != 2) throw InputError(path, line, "expected 2 columns 'sow speed_mps', found " + std::to_string(n));
     if (!(v[0] >= 0.0 && v[0] < kSecondsPerWeek))
-      throw InputError(path, line, "column 1 (sow): expected GPS seconds of week in [0, 604800), found " +
-                                       std::to_string(v[0]));
+      throw InputError(path, line,
+                       "column 1 (sow): expected GPS seconds of week in [0, 604800), found " + std::to_string(v[0]));
     if (!out.empty() && !(v[0] > out.back().t_s))
-      throw InputError(path, line, "column 1 (sow): expected a time after the previous line's " +
-                                       std::to_string(out.back().t_s) + " s, found " + std::to_string(v[0]) + " s");
+      throw InputError(path, line,
+                       "column 1 (sow): expected a time after the previous line's " + std::to_string(out.back().t_s) +
+                           " s, found " + std::to_string(v[0]) + " s");
     out.push_back({v[0], v[1]});
   }
   if (out.empty()) throw InputError(path, 0, "expected odometer samples 'sow speed_mps', found none");

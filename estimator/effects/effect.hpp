@@ -4,11 +4,10 @@
 // each measurement, how its estimate corrects the raw data, and how to print it.
 //
 // Error convention everywhere: delta_x = estimate - truth; the filter corrects x_hat -= delta_x.
+#include <Eigen/Core>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "estimator/effects/imu_error_model.hpp"
 #include "estimator/update/sensor_names.hpp"

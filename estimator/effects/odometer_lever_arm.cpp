@@ -18,7 +18,9 @@ class OdometerLeverArm final : public Vec3Block {
     if (k == sensors::kNonHolonomic) H = J.bottomRows<2>();
     if (k == sensors::kOdometer) H = (1.0 + lp.odometer_scale) * J.topRows<1>();
   }
-  void apply(const Eigen::Ref<const Eigen::VectorXd>& x, ImuErrorModel& m) const override { m.odometer_lever_arm_b_m = v(x); }
+  void apply(const Eigen::Ref<const Eigen::VectorXd>& x, ImuErrorModel& m) const override {
+    m.odometer_lever_arm_b_m = v(x);
+  }
 };
 }  // namespace
 std::unique_ptr<Effect> make_odometer_lever_arm(const FilterOptions& o) {

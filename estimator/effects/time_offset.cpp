@@ -17,9 +17,7 @@ class TimeOffset final : public Effect {
     mean(0) = init_s_;
     std(0) = std_s_;
   }
-  bool enters(SensorName k) const override {
-    return k == sensors::kGnssPosition || k == sensors::kGnssVelocity;
-  }
+  bool enters(SensorName k) const override { return k == sensors::kGnssPosition || k == sensors::kGnssVelocity; }
   void measurement_jacobian(SensorName k, const LinearizationPoint& lp, MatXRef H) const override {
     if (k == sensors::kGnssPosition) H.col(0) = -lp.v_ant_n_mps;
     if (k == sensors::kGnssVelocity) H.col(0) = -lp.a_n_mps2;

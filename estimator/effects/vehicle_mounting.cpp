@@ -24,7 +24,9 @@ class VehicleMounting final : public Vec3Block {
     if (k == sensors::kNonHolonomic) H = J.bottomRows<2>();
     if (k == sensors::kOdometer) H = (1.0 + lp.odometer_scale) * J.topRows<1>();
   }
-  void apply(const Eigen::Ref<const Eigen::VectorXd>& x, ImuErrorModel& m) const override { m.vehicle_mounting_rad = v(x); }
+  void apply(const Eigen::Ref<const Eigen::VectorXd>& x, ImuErrorModel& m) const override {
+    m.vehicle_mounting_rad = v(x);
+  }
 };
 }  // namespace
 std::unique_ptr<Effect> make_vehicle_mounting(const FilterOptions& o) {

@@ -1,14 +1,13 @@
 #include "estimator/filter/nav_filter.hpp"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-#include <Eigen/Cholesky>
-
 #include "common/geo/earth_model.hpp"
-#include "estimator/filter/nav_error_dynamics.hpp"
 #include "common/math/chi_square.hpp"
+#include "estimator/filter/nav_error_dynamics.hpp"
 #include "estimator/update/gnss_fix.hpp"
 #include "estimator/update/gnss_velocity.hpp"
 #include "estimator/update/kalman_update.hpp"
@@ -248,8 +247,8 @@ void NavFilter::run_aids() {
   // covariance is brought to this epoch (which may move the effects' nominal states) and after each update.
   LinearizationPoint lp = linearization_point();
   const auto context = [&] {
-    return AidContext{c_.nav, lp, layout_, opt_, c_.P, c_.detector, c_.f_n_smooth_mps2, gnss_recent,
-                      c_.imu_noise_scale, faults_};
+    return AidContext{c_.nav, lp, layout_, opt_, c_.P, c_.detector, c_.f_n_smooth_mps2, gnss_recent, c_.imu_noise_scale,
+                      faults_};
   };
   std::vector<Measurement> measurements;
   for (UpdaterSlot& updater : c_.updaters) {
@@ -420,8 +419,8 @@ void NavFilter::drop_queued_gnss_after(double t_s) {
 }
 
 void NavFilter::enqueue(const Event& e) {
-  const auto at = std::upper_bound(pending_.begin(), pending_.end(), e.t_s(),
-                                   [](double t, const Event& g) { return t < g.t_s(); });
+  const auto at =
+      std::upper_bound(pending_.begin(), pending_.end(), e.t_s(), [](double t, const Event& g) { return t < g.t_s(); });
   pending_.insert(at, e);
 }
 
@@ -484,9 +483,10 @@ void NavFilter::apply_measurement(const Measurement& m) {
   // Robust: a step is confirmed by two or more measurements beyond the gate in a row, spanning
   // step_confirm_s (a spike of multipath is shorter); KF-GINS: after a count of rejections. Only sensors
   // whose measured quantity can step (m.step_block) are ever forced.
-  const bool due = m.step_block >= 0 &&
-                   (opt_.robust_update ? run.count >= 2 && c_.nav.t_s - run.first_t_s >= opt_.step_confirm_s - kSplitTolerance_s
-                                       : run.count >= opt_.gate_max_consecutive_rejects);
+  const bool due =
+      m.step_block >= 0 &&
+      (opt_.robust_update ? run.count >= 2 && c_.nav.t_s - run.first_t_s >= opt_.step_confirm_s - kSplitTolerance_s
+                          : run.count >= opt_.gate_max_consecutive_rejects);
   const bool agrees = (m.y - previous).norm() <= 0.5 * previous.norm() + 3.0 * std::sqrt(m.R.trace());
   const bool force = due && agrees;
   InnovationRecord rec;

@@ -15,11 +15,10 @@
 // pointer is copied too; set_observer(nullptr) on a copy that must not report).
 // Covariance: accumulated F over IMU samples, propagated at most every options.cov_period_s and at every
 // measurement with Phi = I + F T + (F T)^2 / 2, exploiting the nav / effect block structure.
+#include <Eigen/Core>
 #include <cstdint>
 #include <deque>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "common/formats/nav_types.hpp"
 #include "estimator/filter/records.hpp"
@@ -91,8 +90,8 @@ class NavFilter {
   struct RejectRun {
     SensorName sensor;
     int count = 0;
-    double first_t_s = 0.0;     // epoch of the first of them
-    Eigen::VectorXd last_y;     // innovation of the last rejection
+    double first_t_s = 0.0;  // epoch of the first of them
+    Eigen::VectorXd last_y;  // innovation of the last rejection
   };
   // Everything that changes while filtering: copied into snapshots for late measurements.
   struct Core {
@@ -143,7 +142,7 @@ class NavFilter {
   std::vector<Triplet> F_ee_;  // effect dynamics, effect-local indices
   Eigen::VectorXd q_c_;
   std::vector<Mat3X> J_gyro_, J_accel_;  // per-block workspaces
-  std::vector<double> gates_;  // chi-square gate by dof (index = rows)
+  std::vector<double> gates_;            // chi-square gate by dof (index = rows)
   Mat3 C_b_v_coarse_ = Mat3::Identity();
 
   Core c_;

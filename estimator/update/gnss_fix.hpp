@@ -11,7 +11,9 @@ class GnssFixObservation final : public Observation {
   explicit GnssFixObservation(const GnssFix& fix) : Observation(fix.t_s), fix(fix) {}
   const GnssFix fix;
   bool valid() const override;
-  int measurement_count(const FilterOptions& o) const override { return fix.has_velocity && o.use_gnss_velocity ? 2 : 1; }
+  int measurement_count(const FilterOptions& o) const override {
+    return fix.has_velocity && o.use_gnss_velocity ? 2 : 1;
+  }
   Measurement measurement(int index, const MeasurementContext& ctx) const override;
 };
 

@@ -24,7 +24,9 @@ struct Measurement {
   int rows() const { return static_cast<int>(y.size()); }
   // y, H (zero) and R (zero) sized for `rows` rows over the layout's states.
   Measurement(SensorName name, int rows, int states)
-      : sensor(name), y(Eigen::VectorXd::Zero(rows)), H(Eigen::MatrixXd::Zero(rows, states)),
+      : sensor(name),
+        y(Eigen::VectorXd::Zero(rows)),
+        H(Eigen::MatrixXd::Zero(rows, states)),
         R(Eigen::MatrixXd::Zero(rows, rows)) {}
   Measurement() = default;
 };

@@ -4,8 +4,8 @@
 // suspension motion a real car has (aids.nhc_std_mps).
 #include <algorithm>
 
-#include "estimator/update/updater.hpp"
 #include "estimator/update/gyro_coupling.hpp"
+#include "estimator/update/updater.hpp"
 #include "estimator/update/vehicle_velocity.hpp"
 
 namespace ldv::est {

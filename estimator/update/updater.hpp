@@ -5,11 +5,10 @@
 //
 // A new aid: one file with an Updater subclass and its factory, and one line in updater_list.hpp
 // (estimator/README.md, "Adding an aid").
+#include <Eigen/Core>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "estimator/filter/status.hpp"
 #include "estimator/ins/mechanization.hpp"
@@ -25,11 +24,11 @@ struct AidContext {
   const LinearizationPoint& lp;
   const StateLayout& layout;
   const FilterOptions& options;
-  const Eigen::MatrixXd& P;          // current covariance (flushed to this epoch)
-  const StaticDetector& detector;    // standstill detection over options.zupt.window_s
-  const Vec3& f_n_smooth_mps2;       // specific force in n, low-passed (window / 4)
-  bool gnss_recent;                  // a GNSS measurement was used within the last second
-  double imu_noise_scale;            // factor on the configured IMU white-noise PSDs
+  const Eigen::MatrixXd& P;        // current covariance (flushed to this epoch)
+  const StaticDetector& detector;  // standstill detection over options.zupt.window_s
+  const Vec3& f_n_smooth_mps2;     // specific force in n, low-passed (window / 4)
+  bool gnss_recent;                // a GNSS measurement was used within the last second
+  double imu_noise_scale;          // factor on the configured IMU white-noise PSDs
   FaultCounters& faults;
 };
 

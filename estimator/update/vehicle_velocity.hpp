@@ -6,7 +6,8 @@
 // Jacobian w.r.t. the error state (delta = estimate - truth; C_b_n_hat = (I - [phi x]) C_b_n):
 //   d v_v / d delta_v = C_b_v C_n_b,   d v_v / d phi = -C_b_v C_n_b [v_n x],
 // Gyro errors (d v_v / dx = -C_b_v [l x] J_gyro) are added per measurement by add_gyro_error_columns
-// (gyro_coupling.hpp), the mounting and lever-arm effects add their own columns (vehicle_mounting.cpp, odometer_lever_arm.cpp).
+// (gyro_coupling.hpp), the mounting and lever-arm effects add their own columns (vehicle_mounting.cpp,
+// odometer_lever_arm.cpp).
 #include <Eigen/Core>
 
 #include "estimator/ins/nav_state.hpp"

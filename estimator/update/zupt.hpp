@@ -29,7 +29,9 @@ class StaticDetector {
   bool add(double dt_s, const Vec3& omega_ib_b, const Vec3& f_b);
   bool is_static() const { return static_; }
   // Mean compensated angular rate over the window and the window's length [s] (ZARU).
-  Vec3 mean_rate_rad_s() const { return window_.empty() ? Vec3::Zero() : Vec3(sum_w_ / static_cast<double>(window_.size())); }
+  Vec3 mean_rate_rad_s() const {
+    return window_.empty() ? Vec3::Zero() : Vec3(sum_w_ / static_cast<double>(window_.size()));
+  }
   double window_length_s() const { return sum_dt_s_; }
 
  private:

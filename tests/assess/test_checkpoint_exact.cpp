@@ -118,10 +118,11 @@ void continue_both_and_compare(bool live) {
   const Eigen::VectorXd gnss_bias_m = effect_segment(original, "gnss_position_bias", 0, 3);
   const Eigen::VectorXd gyro_ramp_rate = effect_segment(original, "gyro_moving_bias", 12, 3);
   const Eigen::VectorXd accel_ramp_rate = effect_segment(original, "accel_moving_bias", 12, 3);
-  std::printf("at the checkpoint: GNSS position bias [%.4f %.4f %.4f] m, gyro ramp rate %.3g deg/h/h, accel ramp rate "
-              "%.3g m/s/h^2 (norms)\n",
-              gnss_bias_m(0), gnss_bias_m(1), gnss_bias_m(2), gyro_ramp_rate.norm() * kRadToDeg * 3600.0 * 3600.0,
-              accel_ramp_rate.norm() * 3600.0 * 3600.0);
+  std::printf(
+      "at the checkpoint: GNSS position bias [%.4f %.4f %.4f] m, gyro ramp rate %.3g deg/h/h, accel ramp rate "
+      "%.3g m/s/h^2 (norms)\n",
+      gnss_bias_m(0), gnss_bias_m(1), gnss_bias_m(2), gyro_ramp_rate.norm() * kRadToDeg * 3600.0 * 3600.0,
+      accel_ramp_rate.norm() * 3600.0 * 3600.0);
   ASSERT_GT(gnss_bias_m.norm(), 1e-4);
   ASSERT_GT(gyro_ramp_rate.norm(), 0.0);
   ASSERT_GT(accel_ramp_rate.norm(), 0.0);
@@ -143,10 +144,11 @@ void continue_both_and_compare(bool live) {
     max_effect = std::max(max_effect, max_abs_difference(original.effect_state(), restored.effect_state()));
     ++epochs;
   }
-  std::printf("%s fixes: %ld epochs after the checkpoint, max difference %.3g m position, %.3g m/s velocity, %.3g in an "
-              "effect state, %.3g in the covariance at the end\n",
-              live ? "late (live)" : "queued (offline)", epochs, max_pos_m, max_vel_mps, max_effect,
-              max_abs_difference(original.covariance(), restored.covariance()));
+  std::printf(
+      "%s fixes: %ld epochs after the checkpoint, max difference %.3g m position, %.3g m/s velocity, %.3g in an "
+      "effect state, %.3g in the covariance at the end\n",
+      live ? "late (live)" : "queued (offline)", epochs, max_pos_m, max_vel_mps, max_effect,
+      max_abs_difference(original.covariance(), restored.covariance()));
   EXPECT_GT(epochs, 100L * 200L);
   EXPECT_LE(max_pos_m, kPositionTolerance_m);
   EXPECT_EQ(max_effect, 0.0);
@@ -166,8 +168,8 @@ TEST(ExactCheckpoint, RestartIntoAnOutageEqualsTheUninterruptedRunWithThatOutage
   const sim::SimResult& s = drive();
   const est::FilterOptions fo = full_model(s);
   // Given an outage starting at a fix epoch mid-run (fixes after it are already queued in the running filter)
-  const auto first_after = std::find_if(s.gnss.begin(), s.gnss.end(),
-                                        [&](const GnssFix& g) { return g.t_s >= s.imu.front().t_s + kCheckpointAfter_s; });
+  const auto first_after = std::find_if(
+      s.gnss.begin(), s.gnss.end(), [&](const GnssFix& g) { return g.t_s >= s.imu.front().t_s + kCheckpointAfter_s; });
   ASSERT_NE(first_after, s.gnss.end());
   const double start_s = first_after->t_s, stop_s = start_s + kOutage_s;
 
@@ -216,9 +218,10 @@ TEST(ExactCheckpoint, RestartIntoAnOutageEqualsTheUninterruptedRunWithThatOutage
   }
   // And the outage matters: without its fixes the solution has drifted from the uncut one
   const double drift_m = earth::ned_between(uncut_at_stop->pos, restart.back().pos).norm();
-  std::printf("%.0f s outage from %.1f s: %zu epochs, restart minus re-run max %.3g m; drift from the uncut run at the end "
-              "%.3f m\n",
-              kOutage_s, start_s - s.imu.front().t_s, restart.size(), max_pos_m, drift_m);
+  std::printf(
+      "%.0f s outage from %.1f s: %zu epochs, restart minus re-run max %.3g m; drift from the uncut run at the end "
+      "%.3f m\n",
+      kOutage_s, start_s - s.imu.front().t_s, restart.size(), max_pos_m, drift_m);
   EXPECT_LE(max_pos_m, kPositionTolerance_m);
   EXPECT_EQ(with_outage.effect_state(), restored.effect_state());
   EXPECT_GT(drift_m, 0.01);

@@ -40,7 +40,8 @@ TEST(OutageWalk, DriftAgainstTheUncutSolutionStaysWithinAConsumerMemsBudget) {
     const OutageResult& r = fast.outages[k];
     // Checkpoint restart == rerun from the start with the fixes removed.
     EXPECT_NEAR(r.max_horizontal_m, exact.outages[k].max_horizontal_m, 1e-9) << "outage from " << r.window.start_s;
-    EXPECT_LE((r.end_drift.pos_ned_m - exact.outages[k].end_drift.pos_ned_m).norm(), 1e-9) << "outage from " << r.window.start_s;
+    EXPECT_LE((r.end_drift.pos_ned_m - exact.outages[k].end_drift.pos_ned_m).norm(), 1e-9)
+        << "outage from " << r.window.start_s;
     std::printf("walk_0827: %2.0f s outage from %.1f: max horizontal drift %.2f m\n", r.window.length_s,
                 r.window.start_s, r.max_horizontal_m);
     // Budget (tests/estimator/test_walk.cpp): 5-10 mg effective accel error -> 0.5 a t^2 = 2.5-5 m at 10 s and

@@ -41,8 +41,10 @@ double misfit(const Perturbed& p, const Eigen::VectorXd& de) {
     while (j < p.changed.size() && p.changed[j].t_s < p.base[i].t_s - 0.05) ++j;
     if (j >= p.changed.size()) break;
     size_t k = j;
-    while (k < p.changed.size() && p.changed[k].sensor != p.base[i].sensor && p.changed[k].t_s < p.base[i].t_s + 0.05) ++k;
-    if (k >= p.changed.size() || std::abs(p.changed[k].t_s - p.base[i].t_s) > 0.05 || p.changed[k].sensor != p.base[i].sensor)
+    while (k < p.changed.size() && p.changed[k].sensor != p.base[i].sensor && p.changed[k].t_s < p.base[i].t_s + 0.05)
+      ++k;
+    if (k >= p.changed.size() || std::abs(p.changed[k].t_s - p.base[i].t_s) > 0.05 ||
+        p.changed[k].sensor != p.base[i].sensor)
       continue;
     ++matched;
     const Vec3 d_nu = p.changed[k].innovation - p.base[i].innovation;

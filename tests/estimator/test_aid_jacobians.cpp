@@ -33,7 +33,8 @@ struct AidTruth {
 
 Vec3 vehicle_velocity_model(const AidTruth& t) {
   const Mat3 C_n_b = t.nav.C_b_n().transpose();
-  const Vec3 w_in = earth::omega_ie_n(t.nav.pos.lat_rad) + earth::omega_en_n(t.nav.pos.lat_rad, t.nav.pos.h_m, t.nav.v_n_mps);
+  const Vec3 w_in =
+      earth::omega_ie_n(t.nav.pos.lat_rad) + earth::omega_en_n(t.nav.pos.lat_rad, t.nav.pos.h_m, t.nav.v_n_mps);
   const Vec3 w_nb = t.w_ib_b - C_n_b * w_in;
   return t.C_b_v * (C_n_b * t.nav.v_n_mps + w_nb.cross(t.lever_odo_b));
 }
@@ -42,7 +43,8 @@ LinearizationPoint lp_of(const AidTruth& t) {
   LinearizationPoint lp;
   lp.C_b_n = t.nav.C_b_n();
   lp.omega_ib_b_rad_s = t.w_ib_b;
-  lp.omega_in_n_rad_s = earth::omega_ie_n(t.nav.pos.lat_rad) + earth::omega_en_n(t.nav.pos.lat_rad, t.nav.pos.h_m, t.nav.v_n_mps);
+  lp.omega_in_n_rad_s =
+      earth::omega_ie_n(t.nav.pos.lat_rad) + earth::omega_en_n(t.nav.pos.lat_rad, t.nav.pos.h_m, t.nav.v_n_mps);
   lp.v_n_mps = t.nav.v_n_mps;
   lp.omega_nb_b_rad_s = t.w_ib_b - lp.C_b_n.transpose() * lp.omega_in_n_rad_s;
   lp.C_b_v = t.C_b_v;
@@ -74,7 +76,7 @@ class AidJacobians : public ::testing::Test {
     const int o_bg = layout.find("gyro_bias")->offset, o_sg = layout.find("gyro_scale")->offset;
     const int o_m = layout.find("vehicle_mounting")->offset, o_l = layout.find("odometer_lever_arm")->offset;
     const int o_k = layout.find("odometer_scale")->offset;
-    if (i >= o_bg && i < o_bg + 3) t.w_ib_b(i - o_bg) -= eps;                       // w_hat = w_meas - b_hat
+    if (i >= o_bg && i < o_bg + 3) t.w_ib_b(i - o_bg) -= eps;                           // w_hat = w_meas - b_hat
     if (i >= o_sg && i < o_sg + 3) t.w_ib_b(i - o_sg) -= eps * truth.w_ib_b(i - o_sg);  // (1 + s_hat)^-1 w_meas
     if (i >= o_m && i < o_m + 3) {
       Vec3 mu = Vec3::Zero();

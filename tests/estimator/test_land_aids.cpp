@@ -56,10 +56,12 @@ Drifts mean_drift(const std::string& grade, const std::vector<uint64_t>& seeds) 
     const test::Accuracy nhc = test::evaluate(s, o);
     o.aids.enabled = {"nhc", "odometer"};
     const test::Accuracy both = test::evaluate(s, o, 60.0, odometer_from_truth(s, seed));
-    std::printf("%s seed %llu: largest outage drift none %.2f m, nhc %.2f m, nhc+odometer %.2f m; "
-                "NEES pos/vel/att without aids %.2f %.2f %.2f, with nhc+odometer %.2f %.2f %.2f, gate rejections %ld\n",
-                grade.c_str(), static_cast<unsigned long long>(seed), none.outage_drift_m, nhc.outage_drift_m,
-                both.outage_drift_m, none.nees_pos, none.nees_vel, none.nees_att, both.nees_pos, both.nees_vel, both.nees_att, both.gate_rejections);
+    std::printf(
+        "%s seed %llu: largest outage drift none %.2f m, nhc %.2f m, nhc+odometer %.2f m; "
+        "NEES pos/vel/att without aids %.2f %.2f %.2f, with nhc+odometer %.2f %.2f %.2f, gate rejections %ld\n",
+        grade.c_str(), static_cast<unsigned long long>(seed), none.outage_drift_m, nhc.outage_drift_m,
+        both.outage_drift_m, none.nees_pos, none.nees_vel, none.nees_att, both.nees_pos, both.nees_vel, both.nees_att,
+        both.gate_rejections);
     EXPECT_LT(both.nees_pos, 3.0 * 3.0) << "position NEES (3 expected)";
     EXPECT_LT(both.nees_vel, 3.0 * 3.0) << "velocity NEES (3 expected)";
     EXPECT_LT(both.outage_drift_m, 3.0 * both.outage_drift_sigma_m + 0.5) << "drift within the filter's 3 sigma";

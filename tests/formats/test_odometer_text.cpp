@@ -41,7 +41,8 @@ TEST(FormatsOdometerText, WrittenSamplesReadBack) {
 }
 
 TEST(FormatsOdometerText, CommentsBlankLinesCommasAndCrlfAreAccepted) {
-  const auto s = read_odometer_text(file_with("odo_ok.txt", "# sow speed\r\n\r\n100.0 1.5\r\n% rtklib style\n100.5,2.5\n"));
+  const auto s =
+      read_odometer_text(file_with("odo_ok.txt", "# sow speed\r\n\r\n100.0 1.5\r\n% rtklib style\n100.5,2.5\n"));
   ASSERT_EQ(s.size(), 2u);
   EXPECT_EQ(s[1].t_s, 100.5);
   EXPECT_EQ(s[1].speed_mps, 2.5);
@@ -56,7 +57,8 @@ TEST(FormatsOdometerText, MalformedInputNamesFileLineAndExpectation) {
       {"100\n", ":1: expected 2 columns 'sow speed_mps', found 1"},
       {"100 1\n101 fast\n", ":2: expected 'sow speed_mps' (2 numbers): column 2: expected a number, found 'fast'"},
       {"100 nan\n", ":1: expected 'sow speed_mps' (2 numbers): column 2: expected a finite number, found 'nan'"},
-      {"100 1\n100 2\n", ":2: column 1 (sow): expected a time after the previous line's 100.000000 s, found 100.000000 s"},
+      {"100 1\n100 2\n",
+       ":2: column 1 (sow): expected a time after the previous line's 100.000000 s, found 100.000000 s"},
       {"100 1\n99 2\n", ":2: column 1 (sow): expected a time after the previous line's"},
       {"604800 1\n", ":1: column 1 (sow): expected GPS seconds of week in [0, 604800)"},
       {"-1 1\n", ":1: column 1 (sow): expected GPS seconds of week in [0, 604800)"},

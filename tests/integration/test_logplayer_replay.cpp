@@ -67,7 +67,9 @@ std::map<std::string, long> channel_counts(const std::string& path) {
   return out;
 }
 
-Geodetic position_of(const ldv_lcm::nav_state_t& m) { return {m.lat_deg * kDegToRad, m.lon_deg * kDegToRad, m.height_m}; }
+Geodetic position_of(const ldv_lcm::nav_state_t& m) {
+  return {m.lat_deg * kDegToRad, m.lon_deg * kDegToRad, m.height_m};
+}
 
 bool contiguous(const std::vector<ldv_lcm::nav_state_t>& v) {
   for (size_t i = 1; i < v.size(); ++i)
@@ -76,7 +78,9 @@ bool contiguous(const std::vector<ldv_lcm::nav_state_t>& v) {
 }
 }  // namespace
 
-TEST(LogplayerReplay, GivenALiveRunsLog_WhenLcmLogplayerReplaysItsInputsIntoAFreshFusion_ThenNavEqualsTheLiveNavAndTspiReachesARemoteSubscriber) {
+TEST(
+    LogplayerReplay,
+    GivenALiveRunsLog_WhenLcmLogplayerReplaysItsInputsIntoAFreshFusion_ThenNavEqualsTheLiveNavAndTspiReachesARemoteSubscriber) {
   const fs::path dir = fs::temp_directory_path() / ("ldv_logplayer_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir / "sim");
@@ -110,29 +114,37 @@ TEST(LogplayerReplay, GivenALiveRunsLog_WhenLcmLogplayerReplaysItsInputsIntoAFre
   // And the services configured as deployed (fusion without a warm-start file: a replay started within
   // warm_start_max_age_s of the live run would resume from the live run's last state instead of aligning)
   const std::string imu_tty = (dir / "imu_tty").string(), gnss_tty = (dir / "gnss_tty").string();
-  std::ofstream(dir / "imu_acq.yaml") << "bus_url: \"" << kBusUrl << "\"\ninput: {type: serial, serial: {device: " << imu_tty
-                                      << ", baud: 460800}}\nprotocol: tsu\ntsu: {counter_hz: 10.0e6}\nsample_rate_hz: 200\n"
-                                      << "pps: {source: device, label_refers: auto}\n";
-  std::ofstream(dir / "gnss_link.yaml") << "bus_url: \"" << kBusUrl << "\"\ninput: {type: serial, serial: {device: " << gnss_tty
+  std::ofstream(dir / "imu_acq.yaml")
+      << "bus_url: \"" << kBusUrl << "\"\ninput: {type: serial, serial: {device: " << imu_tty
+      << ", baud: 460800}}\nprotocol: tsu\ntsu: {counter_hz: 10.0e6}\nsample_rate_hz: 200\n"
+      << "pps: {source: device, label_refers: auto}\n";
+  std::ofstream(dir / "gnss_link.yaml") << "bus_url: \"" << kBusUrl
+                                        << "\"\ninput: {type: serial, serial: {device: " << gnss_tty
                                         << ", baud: 115200}}\nprotocol: nmea\ngps_minus_utc_s: 18\n";
-  std::ofstream(dir / "fusion.yaml") << "bus_url: \"" << kBusUrl << "\"\nkfgins_config: " << (dir / "sim" / "kfgins.yaml").string()
+  std::ofstream(dir / "fusion.yaml") << "bus_url: \"" << kBusUrl
+                                     << "\"\nkfgins_config: " << (dir / "sim" / "kfgins.yaml").string()
                                      << "\nhistory_s: 3.0\n";
-  std::ofstream(dir / "tspi_pub.yaml") << "bus_url: \"" << kBusUrl << "\"\ntspi: {rate_hz: 20, group: 239.255.77.1, port: 7668, ttl: 1}\n";
+  std::ofstream(dir / "tspi_pub.yaml") << "bus_url: \"" << kBusUrl
+                                       << "\"\ntspi: {rate_hz: 20, group: 239.255.77.1, port: 7668, ttl: 1}\n";
   auto service = [&](const std::string& name, const std::string& log_name) {
-    return test::start_logged(kBin + "/" + name, {"--config", (dir / (name + ".yaml")).string()}, (dir / log_name).string());
+    return test::start_logged(kBin + "/" + name, {"--config", (dir / (name + ".yaml")).string()},
+                              (dir / log_name).string());
   };
 
   // When the live run is recorded
   const std::string live_log = (dir / "live.lcmlog").string();
   {
-    auto logger = test::start_logged(kBin + "/ldv_logger", {"--lcm-url", kBusUrl, live_log}, (dir / "live_logger.log").string());
+    auto logger =
+        test::start_logged(kBin + "/ldv_logger", {"--lcm-url", kBusUrl, live_log}, (dir / "live_logger.log").string());
     test::BusWatch w(kBusUrl, kTspiUrl);
-    auto drive = test::start_logged(kBin + "/ldv", {"drive", (dir / "sim").string(), "--imu-link", imu_tty, "--gnss-link",
-                                                    gnss_tty, "--start-delay", std::to_string(start_delay_s - 0.1)},
+    auto drive = test::start_logged(kBin + "/ldv",
+                                    {"drive", (dir / "sim").string(), "--imu-link", imu_tty, "--gnss-link", gnss_tty,
+                                     "--start-delay", std::to_string(start_delay_s - 0.1)},
                                     (dir / "drive.log").string());
     w.spin(0.3);
     std::vector<std::unique_ptr<test::ChildProcess>> svc;
-    for (const char* name : {"imu_acq", "gnss_link", "fusion", "tspi_pub"}) svc.push_back(service(name, std::string("live_") + name + ".log"));
+    for (const char* name : {"imu_acq", "gnss_link", "fusion", "tspi_pub"})
+      svc.push_back(service(name, std::string("live_") + name + ".log"));
     // Until the drive has been played and fusion has published its last NAV
     w.spin(start_delay_s + kDriveDuration_s + 30.0, [&] { return drive->wait_exit(0.01) != 1000; });
     w.spin(10.0, [&] { return w.nav_count > 0 && test::steady_s() - w.last_nav_rx_s > 1.5; });
@@ -145,21 +157,25 @@ TEST(LogplayerReplay, GivenALiveRunsLog_WhenLcmLogplayerReplaysItsInputsIntoAFre
   ASSERT_GT(live_nav.size(), 200u * 20u) << "live NAV for at least 20 s of driving (see " << dir << "/live_*.log)";
   ASSERT_TRUE(contiguous(live_nav)) << "the live log lost NAV messages: it cannot be compared epoch for epoch";
   const auto live_counts = channel_counts(live_log);
-  for (const char* ch : {"IMU", "GNSS_SOLUTION", "GNSS_PPS", "IMU_PPS", "IMU_TIMING"}) ASSERT_TRUE(live_counts.count(ch)) << ch;
+  for (const char* ch : {"IMU", "GNSS_SOLUTION", "GNSS_PPS", "IMU_PPS", "IMU_TIMING"})
+    ASSERT_TRUE(live_counts.count(ch)) << ch;
 
   // And lcm-logplayer replays its inputs at twice real time into a fresh fusion (and tspi_pub), recorded
   const std::string replay_log = (dir / "replay.lcmlog").string();
   std::vector<ldv_lcm::tspi_v1_t> remote_tspi;
   {
-    auto logger = test::start_logged(kBin + "/ldv_logger", {"--lcm-url", kBusUrl, replay_log}, (dir / "replay_logger.log").string());
+    auto logger = test::start_logged(kBin + "/ldv_logger", {"--lcm-url", kBusUrl, replay_log},
+                                     (dir / "replay_logger.log").string());
     test::BusWatch w(kBusUrl, kTspiUrl);
     auto fusion = service("fusion", "replay_fusion.log");
     auto tspi = service("tspi_pub", "replay_tspi_pub.log");
     // Play only once everybody listens (each heartbeat follows its subscriptions).
-    ASSERT_TRUE(w.spin(30.0, [&] { return w.latest("STATUS_FUSION") && w.latest("STATUS_TSPI_PUB") && w.latest("STATUS_LOGGER"); }))
-        << "heartbeats of fusion, tspi_pub and the logger within 30 s";
-    test::ChildProcess player("/bin/sh", {"-c", "exec \"$0\" \"$@\" >>'" + (dir / "logplayer.log").string() + "' 2>&1", kLogplayer,
-                                          "--lcm-url=" + kBusUrl, "-e", "(IMU|GNSS_SOLUTION|GNSS_PPS)", "--speed", "2", live_log});
+    ASSERT_TRUE(w.spin(30.0, [&] {
+      return w.latest("STATUS_FUSION") && w.latest("STATUS_TSPI_PUB") && w.latest("STATUS_LOGGER");
+    })) << "heartbeats of fusion, tspi_pub and the logger within 30 s";
+    test::ChildProcess player("/bin/sh",
+                              {"-c", "exec \"$0\" \"$@\" >>'" + (dir / "logplayer.log").string() + "' 2>&1", kLogplayer,
+                               "--lcm-url=" + kBusUrl, "-e", "(IMU|GNSS_SOLUTION|GNSS_PPS)", "--speed", "2", live_log});
     int played = 1000;
     w.spin(kDriveDuration_s + 60.0, [&] { return (played = player.wait_exit(0.01)) != 1000; });
     EXPECT_EQ(played, 0) << "lcm-logplayer (see " << dir << "/logplayer.log)";
@@ -174,7 +190,8 @@ TEST(LogplayerReplay, GivenALiveRunsLog_WhenLcmLogplayerReplaysItsInputsIntoAFre
 
   // Then the replay carried the inputs only (the channels only the live devices and services had are absent)
   const auto replay_counts = channel_counts(replay_log);
-  for (const char* ch : {"IMU_PPS", "IMU_TIMING", "STATUS_IMU_ACQ", "STATUS_GNSS_LINK"}) EXPECT_FALSE(replay_counts.count(ch)) << ch;
+  for (const char* ch : {"IMU_PPS", "IMU_TIMING", "STATUS_IMU_ACQ", "STATUS_GNSS_LINK"})
+    EXPECT_FALSE(replay_counts.count(ch)) << ch;
   for (const char* ch : {"IMU", "GNSS_SOLUTION", "GNSS_PPS"})
     EXPECT_EQ(replay_counts.count(ch) ? replay_counts.at(ch) : 0, live_counts.at(ch)) << ch << " played completely";
 
@@ -203,10 +220,11 @@ TEST(LogplayerReplay, GivenALiveRunsLog_WhenLcmLogplayerReplaysItsInputsIntoAFre
     }
     status_differs += a.status != b.status || a.mode != b.mode;
   }
-  std::printf("live NAV %zu, replayed NAV %zu (%.3f .. %.3f s of week); not replayed %ld; max difference: position %.3g m, "
-              "velocity %.3g m/s, attitude %.3g deg, a std %.3g; status or mode differs at %ld epochs\n",
-              live_nav.size(), replay_nav.size(), live_nav.front().gps_sow_s, live_nav.back().gps_sow_s, missing, max_pos_m,
-              max_vel_mps, max_rpy_deg, max_std, status_differs);
+  std::printf(
+      "live NAV %zu, replayed NAV %zu (%.3f .. %.3f s of week); not replayed %ld; max difference: position %.3g m, "
+      "velocity %.3g m/s, attitude %.3g deg, a std %.3g; status or mode differs at %ld epochs\n",
+      live_nav.size(), replay_nav.size(), live_nav.front().gps_sow_s, live_nav.back().gps_sow_s, missing, max_pos_m,
+      max_vel_mps, max_rpy_deg, max_std, status_differs);
   EXPECT_EQ(missing, 0);
   // The same arithmetic on the same inputs in the same order: equal to the last bit (1e-9 m as for checkpoints).
   EXPECT_LE(max_pos_m, 1e-9);
@@ -225,8 +243,8 @@ TEST(LogplayerReplay, GivenALiveRunsLog_WhenLcmLogplayerReplaysItsInputsIntoAFre
     tspi_not_nav += it == replay_at.end() || it->second->lat_deg != t.lat_deg || it->second->lon_deg != t.lon_deg ||
                     it->second->height_m != t.height_m;
   }
-  std::printf("remote TSPI subscriber: %zu messages, %ld not equal to the replayed NAV of their epoch\n", remote_tspi.size(),
-              tspi_not_nav);
+  std::printf("remote TSPI subscriber: %zu messages, %ld not equal to the replayed NAV of their epoch\n",
+              remote_tspi.size(), tspi_not_nav);
   EXPECT_EQ(tspi_not_nav, 0);
   if (!HasFailure()) fs::remove_all(dir);
 }

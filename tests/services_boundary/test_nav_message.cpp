@@ -5,9 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <vector>
-
 #include <ldv_lcm/nav_innovation_t.hpp>
+#include <vector>
 
 #include "common/bus/bus.hpp"
 #include "common/geo/earth_model.hpp"
@@ -57,8 +56,8 @@ TEST(NavMessage, GivenAFixDisplacedFromTheFilter_ThenThePublishedInnovationIsPre
   // Then the message fusion publishes for it says innovation = -d
   Bus bus("memq://");
   std::vector<ldv_lcm::nav_innovation_t> got;
-  bus.subscribe<ldv_lcm::nav_innovation_t>("NAV_INNOVATION",
-                                           [&](const ldv_lcm::nav_innovation_t& m, const std::string&) { got.push_back(m); });
+  bus.subscribe<ldv_lcm::nav_innovation_t>(
+      "NAV_INNOVATION", [&](const ldv_lcm::nav_innovation_t& m, const std::string&) { got.push_back(m); });
   int64_t seq = 0;
   for (const est::InnovationRecord& rec : engine.filter().take_innovations())
     ASSERT_TRUE(bus.publish("NAV_INNOVATION", innovation_message(rec, 2300, seq++)));

@@ -2,9 +2,9 @@
 // and resolution, the files and config keys it comes with; and the land motion: no side slip unless
 // --wheel-slip asks for it, then the slip of its definition, with increments consistent with the truth.
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
 
 #include <GeographicLib/NormalGravity.hpp>
-#include <yaml-cpp/yaml.h>
 
 #include "common/formats/kfgins_config.hpp"
 #include "common/formats/odometer_text.hpp"
@@ -81,12 +81,14 @@ TEST(SimOdometer, ScaleNoiseAndResolutionAsDefined) {
   q.vehicle.odo_noise_mps = 0.05;
   const SimResult noisy = simulate(q);
   double ss = 0;
-  for (size_t i = 0; i < base.odometer.size(); ++i) ss += std::pow(noisy.odometer[i].speed_mps - base.odometer[i].speed_mps, 2);
+  for (size_t i = 0; i < base.odometer.size(); ++i)
+    ss += std::pow(noisy.odometer[i].speed_mps - base.odometer[i].speed_mps, 2);
   EXPECT_NEAR(std::sqrt(ss / base.odometer.size()) / 0.05, 1.0, 0.05);  // 5001 samples: 1 % std
 
   q.vehicle.odo_quantum_mps = 0.1;
   const SimResult quantised = simulate(q);
-  for (const OdometerSample& s : quantised.odometer) ASSERT_NEAR(s.speed_mps / 0.1, std::round(s.speed_mps / 0.1), 1e-9);
+  for (const OdometerSample& s : quantised.odometer)
+    ASSERT_NEAR(s.speed_mps / 0.1, std::round(s.speed_mps / 0.1), 1e-9);
 }
 
 TEST(SimOdometer, IsNotLateWithTheImuAndWritesItsFileConfigKeyAndTruth) {
@@ -151,7 +153,8 @@ TEST(SimLandMotion, WheelSlipIncrementsStayConsistentWithTheTruth) {
   for (size_t k = 3; k + 3 < r.truth.size(); k += 5) {
     const TruthSample& t = r.truth[k];
     const Vec3 dv = (r.truth[k - 2].vel_n_mps - 8.0 * r.truth[k - 1].vel_n_mps + 8.0 * r.truth[k + 1].vel_n_mps -
-                     r.truth[k + 2].vel_n_mps) / (12.0 * dt);
+                     r.truth[k + 2].vel_n_mps) /
+                    (12.0 * dt);
     // The truth's own sensed f_b (what the increments integrate) rotated into NED.
     const Vec3 f_n = C_b_n_from_euler(t.rpy_rad) * t.f_b_mps2;
     const Vec3 w_ie_n(kOmegaEarth * std::cos(t.pos.lat_rad), 0.0, -kOmegaEarth * std::sin(t.pos.lat_rad));

@@ -3,11 +3,10 @@
 // the IMU mounting (rotated sensing, body attitude in truth.nav), GNSS velocity lag, velocity noise and
 // outliers, the --realism vehicle preset and datasheet.yaml, and the option errors.
 #include <gtest/gtest.h>
-
-#include <set>
+#include <yaml-cpp/yaml.h>
 
 #include <GeographicLib/NormalGravity.hpp>
-#include <yaml-cpp/yaml.h>
+#include <set>
 
 #include "common/formats/kfgins_config.hpp"
 #include "common/formats/kfgins_files.hpp"
@@ -111,8 +110,8 @@ TEST(SimImuLatency, IsTheTimeOffsetEffectWithTheOppositeSignOnAShiftedTimeScale)
 
 TEST(SimMounting, ImuSensesTheVehicleQuantitiesRotatedAndTruthNavIsTheBodyAttitude) {
   const std::string level = write_text("level_static.yaml", kLevelStart);
-  for (const Vec3& m_deg : {Vec3(180, 0, 180), Vec3(90, 0, -90), Vec3(0, -90, 90), Vec3(181.5 - 360, 1.2, -178.7),
-                            Vec3(3, -2, 91)}) {
+  for (const Vec3& m_deg :
+       {Vec3(180, 0, 180), Vec3(90, 0, -90), Vec3(0, -90, 90), Vec3(181.5 - 360, 1.2, -178.7), Vec3(3, -2, 91)}) {
     const Mat3 C_b_v = C_b_n_from_euler(m_deg * kDegToRad);  // Rz(yaw) Ry(pitch) Rx(roll), written out in rotation.hpp
     for (const std::string& scenario : {level, std::string("drive")}) {
       SimRequest q = perfect_request(scenario, 60.0, 100.0);
@@ -131,7 +130,8 @@ TEST(SimMounting, ImuSensesTheVehicleQuantitiesRotatedAndTruthNavIsTheBodyAttitu
       double worst_f = 0, worst_w = 0, worst_att = 0, worst_pos = 0;
       for (size_t k = 0; k < body.imu.size(); ++k) {
         worst_f = std::max(worst_f, (body.imu[k].dvel_b_mps - C_b_v.transpose() * vehicle.imu[k].dvel_b_mps).norm());
-        worst_w = std::max(worst_w, (body.imu[k].dtheta_b_rad - C_b_v.transpose() * vehicle.imu[k].dtheta_b_rad).norm());
+        worst_w =
+            std::max(worst_w, (body.imu[k].dtheta_b_rad - C_b_v.transpose() * vehicle.imu[k].dtheta_b_rad).norm());
       }
       // and truth.nav holds the body attitude C_b_n = C_v_n C_b_v on the same trajectory.
       for (size_t k = 0; k < body.truth.size(); ++k) {
@@ -312,25 +312,37 @@ TEST(SimRealism, BadVehicleOptionsNameTheOptionAndTheExpectation) {
     set(q.vehicle);
     return input_error_of([&] { simulate(q); });
   };
-  EXPECT_NE(err([](VehicleOptions& v) { v.realism = "car"; }).find("--realism: unknown realism 'car': expected none or vehicle"),
+  EXPECT_NE(err([](VehicleOptions& v) {
+              v.realism = "car";
+            }).find("--realism: unknown realism 'car': expected none or vehicle"),
             std::string::npos);
-  EXPECT_NE(err([](VehicleOptions& v) { v.vibration_factor = 0.5; }).find("--vibration: expected a factor in [1, 1000]"),
+  EXPECT_NE(
+      err([](VehicleOptions& v) { v.vibration_factor = 0.5; }).find("--vibration: expected a factor in [1, 1000]"),
+      std::string::npos);
+  EXPECT_NE(err([](VehicleOptions& v) {
+              v.mounting_rpy_deg = Vec3(0, 100, 0);
+            }).find("--mounting: expected pitch in [-90, 90] deg, found 100"),
             std::string::npos);
-  EXPECT_NE(err([](VehicleOptions& v) { v.mounting_rpy_deg = Vec3(0, 100, 0); }).find("--mounting: expected pitch in [-90, 90] deg, found 100"),
+  EXPECT_NE(
+      err([](VehicleOptions& v) { v.imu_latency_s = -0.1; }).find("--imu-latency: expected a latency in [0, 1] s"),
+      std::string::npos);
+  EXPECT_NE(err([](VehicleOptions& v) {
+              v.gnss_outlier_rate = 2;
+            }).find("--gnss-outliers: expected a fraction of epochs in [0, 1]"),
             std::string::npos);
-  EXPECT_NE(err([](VehicleOptions& v) { v.imu_latency_s = -0.1; }).find("--imu-latency: expected a latency in [0, 1] s"),
+  EXPECT_NE(err([](VehicleOptions& v) {
+              v.odo_rate_hz = 0;
+            }).find("--odo-rate: expected an odometer rate in [0.1, 1000] Hz, found 0"),
             std::string::npos);
-  EXPECT_NE(err([](VehicleOptions& v) { v.gnss_outlier_rate = 2; }).find("--gnss-outliers: expected a fraction of epochs in [0, 1]"),
+  EXPECT_NE(err([](VehicleOptions& v) { v.shocks_per_km = std::nan(""); }).find("--shocks: expected a rate"),
             std::string::npos);
-  EXPECT_NE(err([](VehicleOptions& v) { v.odo_rate_hz = 0; }).find("--odo-rate: expected an odometer rate in [0.1, 1000] Hz, found 0"),
-            std::string::npos);
-  EXPECT_NE(err([](VehicleOptions& v) { v.shocks_per_km = std::nan(""); }).find("--shocks: expected a rate"), std::string::npos);
 }
 
 TEST(SimRealismCli, RealismRunWritesOdometerAndDatasheetAndBadOptionsAreNamed) {
   const fs::path dir = temp_dir("cli_realism");
   const std::string ldv = std::string(LDV_BIN_DIR) + "/ldv sim --duration 20 --quiet --imu-rate 100 ";
-  ASSERT_EQ(std::system((ldv + "--realism vehicle --mounting 180,0,180 --out " + dir.string() + " > /dev/null").c_str()), 0);
+  ASSERT_EQ(
+      std::system((ldv + "--realism vehicle --mounting 180,0,180 --out " + dir.string() + " > /dev/null").c_str()), 0);
   for (const char* f : {"odo.txt", "datasheet.yaml", "kfgins.yaml", "imu.txt"}) EXPECT_TRUE(fs::exists(dir / f)) << f;
   const YAML::Node key = YAML::LoadFile((dir / "truth_effects.yaml").string());
   EXPECT_NEAR(key["effects"]["vehicle_mounting"]["value"][0].as<double>(), 180.0, 1e-9);  // given: not drawn

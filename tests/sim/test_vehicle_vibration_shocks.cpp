@@ -76,7 +76,9 @@ segments:
   - {type: straight, duration_s: 40}
 )";
 
-Mat3 exp_so3(const Vec3& phi) { return Mat3(Eigen::AngleAxisd(phi.norm(), phi.norm() > 0 ? Vec3(phi.normalized()) : Vec3::UnitX())); }
+Mat3 exp_so3(const Vec3& phi) {
+  return Mat3(Eigen::AngleAxisd(phi.norm(), phi.norm() > 0 ? Vec3(phi.normalized()) : Vec3::UnitX()));
+}
 }  // namespace
 
 TEST(SimVibration, WhitePartMakesTheInstalledNoiseFactorTimesTheGradesArwAndVrw) {
@@ -230,8 +232,10 @@ TEST(SimShocks, EachBumpPeaksAsDrawnAndAStrapdownReturnsToTheTruthAfterIt) {
       Cw = Cw * exp_so3(a.dtheta_b_rad);
       Ce = Ce * exp_so3(b.dtheta_b_rad);
       const double d_shape = shape((k + 1) * dt) - shape(k * dt);
-      worst_rate = std::max(worst_rate, std::abs(a.dtheta_b_rad.y() - b.dtheta_b_rad.y() - e.pitch_rate_peak_rad_s * d_shape));
-      worst_accel = std::max(worst_accel, std::abs(a.dvel_b_mps.z() - b.dvel_b_mps.z() - e.vertical_accel_peak_mps2 * d_shape));
+      worst_rate =
+          std::max(worst_rate, std::abs(a.dtheta_b_rad.y() - b.dtheta_b_rad.y() - e.pitch_rate_peak_rad_s * d_shape));
+      worst_accel =
+          std::max(worst_accel, std::abs(a.dvel_b_mps.z() - b.dvel_b_mps.z() - e.vertical_accel_peak_mps2 * d_shape));
       peak_angle = std::max(peak_angle, Eigen::AngleAxisd(Ce.transpose() * Cw).angle());
     }
     // Then each increment differs by the closed form's change over the interval (up to the first-order

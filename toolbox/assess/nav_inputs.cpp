@@ -1,19 +1,18 @@
 #include "toolbox/assess/nav_inputs.hpp"
 
-#include "estimator/calibrate/gnss_velocity_check.hpp"
-
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
 
+#include "common/formats/imu_calibration.hpp"
 #include "common/formats/kfgins_files.hpp"
+#include "common/formats/odometer_text.hpp"
+#include "common/formats/rtklib_solution.hpp"
 #include "common/formats/tagged_imu_csv.hpp"
 #include "common/io/input_error.hpp"
+#include "estimator/calibrate/gnss_velocity_check.hpp"
 #include "estimator/run/run_navigation.hpp"
-#include "common/formats/rtklib_solution.hpp"
-#include "common/formats/imu_calibration.hpp"
-#include "common/formats/odometer_text.hpp"
 #include "estimator/update/odometer.hpp"
 
 namespace ldv::assess {
@@ -135,7 +134,8 @@ void load_odometer(const NavInputArgs& a, NavInputs& in) {
     try {
       path = resolve_data_path(in.config.ldv["odopath"].as<std::string>(), in.config.config_path);
     } catch (const YAML::Exception&) {
-      throw InputError(in.config.config_path, in.config.ldv["odopath"].Mark().line + 1, "key 'ldv.odopath': expected a path");
+      throw InputError(in.config.config_path, in.config.ldv["odopath"].Mark().line + 1,
+                       "key 'ldv.odopath': expected a path");
     }
   }
   if (path.empty())

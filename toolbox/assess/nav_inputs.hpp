@@ -22,8 +22,8 @@
 
 #include "common/formats/kfgins_config.hpp"
 #include "common/formats/nav_types.hpp"
-#include "estimator/calibrate/imu_latency.hpp"
 #include "common/io/dropped_records.hpp"
+#include "estimator/calibrate/imu_latency.hpp"
 #include "estimator/options.hpp"
 #include "estimator/update/observation.hpp"
 

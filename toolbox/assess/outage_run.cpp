@@ -1,9 +1,5 @@
 #include "toolbox/assess/outage_run.hpp"
 
-#include "common/parallel/parallel_for.hpp"
-
-#include "estimator/run/alignment_options_from.hpp"
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -13,6 +9,7 @@
 #include <thread>
 
 #include "common/io/input_error.hpp"
+#include "common/parallel/parallel_for.hpp"
 #include "estimator/run/alignment_options_from.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "toolbox/assess/filter_checkpoint.hpp"

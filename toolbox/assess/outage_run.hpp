@@ -52,7 +52,7 @@ struct OutageResult {
 
 struct OutageRun {
   std::string reference;  // "truth" or "uncut solution"
-  std::vector<OutageResult> outages;  // sorted by length, then start
+  std::vector<OutageResult> outages;              // sorted by length, then start
   double uncut_run_s = 0.0, outages_run_s = 0.0;  // wall time
   long imu_samples = 0;
   int threads = 1;

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "toolbox/assess/gnuplot_figure.hpp"
 #include "common/plot/gnuplot.hpp"
+#include "toolbox/assess/gnuplot_figure.hpp"
 #include "toolbox/assess/nav_side_files.hpp"
 #include "toolbox/assess/report_sections.hpp"
 
@@ -35,7 +35,8 @@ void add_innovation_section(HtmlPage& page, const std::string& dir, const Report
   for (const auto& r : rows) by_kind[r.kind].push_back(&r);
   const double t0 = rows.front().t_s;
   HtmlTable stats{"NIS per measurement (mean = the measurement's rows when consistent)",
-                  {"measurement", "count", "accepted %", "mean NIS", "RMS row 1", "RMS row 2", "RMS row 3"}, {}};
+                  {"measurement", "count", "accepted %", "mean NIS", "RMS row 1", "RMS row 2", "RMS row 3"},
+                  {}};
   for (const auto& [kind, list] : by_kind) {
     double nis = 0, accepted = 0;
     Vec3 sq = Vec3::Zero();
@@ -49,8 +50,9 @@ void add_innovation_section(HtmlPage& page, const std::string& dir, const Report
     const RowLabels labels = row_labels(kind);
     std::vector<std::string> row = {kind, std::to_string(list.size()), fixed(100 * accepted / n, 1), fixed(nis / n, 2)};
     for (size_t k = 0; k < 3; ++k)
-      row.push_back(k < labels.names.size() ? labels.names[k] + " " + fixed(rms(static_cast<int>(k)), 4) + " " + labels.unit
-                                            : std::string("-"));
+      row.push_back(k < labels.names.size()
+                        ? labels.names[k] + " " + fixed(rms(static_cast<int>(k)), 4) + " " + labels.unit
+                        : std::string("-"));
     stats.rows.push_back(row);
   }
   bool first = true;

@@ -16,20 +16,20 @@ struct Screenable {
 // a component whose minimal detectable size on this drive exceeds it cannot be tested here.
 constexpr double kDegH = 3.141592653589793 / 180.0 / 3600.0;
 const Screenable kScreenable[] = {
-    {"lever_arm", 3.0},                       // m
-    {"time_offset", 0.5},                     // s
-    {"gyro_scale", 0.02},                     // 20000 ppm
+    {"lever_arm", 3.0},    // m
+    {"time_offset", 0.5},  // s
+    {"gyro_scale", 0.02},  // 20000 ppm
     {"accel_scale", 0.02},
-    {"gyro_misalignment", 0.01},              // rad (2000 arcsec)
+    {"gyro_misalignment", 0.01},  // rad (2000 arcsec)
     {"accel_misalignment", 0.01},
     {"g_sensitivity", 2000.0 * kDegH / 9.80665},  // 2000 deg/h/g (MEMS: ~0.1 deg/s/g)
-    {"gravity_anomaly", 2e-3},                // 200 mGal
-    {"gyro_bias", 1000.0 * kDegH},            // only when dropped from the model
+    {"gravity_anomaly", 2e-3},                    // 200 mGal
+    {"gyro_bias", 1000.0 * kDegH},                // only when dropped from the model
     {"accel_bias", 0.1},
     // Seen only through the land-vehicle aids (screened when the aid is on).
-    {"vehicle_mounting", 0.1},                // rad (6 deg beyond the coarse mounting)
-    {"odometer_scale", 0.05},                 // 5 %
-    {"odometer_lever_arm", 3.0},              // m
+    {"vehicle_mounting", 0.1},    // rad (6 deg beyond the coarse mounting)
+    {"odometer_scale", 0.05},     // 5 %
+    {"odometer_lever_arm", 3.0},  // m
 };
 
 // The aid an effect needs to be seen at all (nullptr: GNSS sees it).

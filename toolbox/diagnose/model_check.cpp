@@ -72,13 +72,15 @@ ModelCheck check_model(const FilterRun& run, const std::vector<Segment>& labels,
   ModelCheck mc;
   mc.loglik = log_likelihood(run.records);
   // Every sensor met, GNSS first; rows of a sensor are fixed (the first record's).
-  std::vector<est::SensorName> names = {est::sensors::kGnssPosition, est::sensors::kGnssVelocity, est::sensors::kZeroVelocity};
+  std::vector<est::SensorName> names = {est::sensors::kGnssPosition, est::sensors::kGnssVelocity,
+                                        est::sensors::kZeroVelocity};
   for (const auto& r : run.records)
     if (std::find(names.begin(), names.end(), r.sensor) == names.end()) names.push_back(r.sensor);
   for (const est::SensorName kind : names) {
     std::vector<const SensitivityRecord*> rs;
     for (const auto& r : run.records)
-      if (r.sensor == kind && std::isfinite(r.nis) && (rs.empty() || r.innovation.size() == rs.front()->innovation.size()))
+      if (r.sensor == kind && std::isfinite(r.nis) &&
+          (rs.empty() || r.innovation.size() == rs.front()->innovation.size()))
         rs.push_back(&r);
     if (rs.size() < 10) continue;
     const int rows = static_cast<int>(rs.front()->innovation.size());
@@ -118,7 +120,8 @@ ModelCheck check_model(const FilterRun& run, const std::vector<Segment>& labels,
     sc.effective_n = n / sc.correlation_time;
     sc.long_run_factor = sc.correlation_time;
     sc.mean_nis = mean_band(nis_sum / n, rows, rows, sc.effective_n, confidence);
-    for (int i = 0; i < rows; ++i) sc.axis_nis.push_back(mean_band(axis_sum(i) / n, 1.0, 1.0, sc.effective_n, confidence));
+    for (int i = 0; i < rows; ++i)
+      sc.axis_nis.push_back(mean_band(axis_sum(i) / n, 1.0, 1.0, sc.effective_n, confidence));
 
     // Per manoeuvre segment.
     std::array<SegmentCheck, kSegmentCount> seg;

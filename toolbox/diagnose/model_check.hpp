@@ -20,15 +20,15 @@ struct SegmentCheck {
   Segment segment = Segment::kStraight;
   int count = 0;
   Band mean_nis;          // 3-dof NIS, band from the segment's effective sample size
-  Eigen::VectorXd rms;  // innovation RMS per row (GNSS: N E D) [m, m/s or rad/s]
+  Eigen::VectorXd rms;    // innovation RMS per row (GNSS: N E D) [m, m/s or rad/s]
   int rejected = 0;
 };
 
 struct SensorCheck {
   est::SensorName sensor = est::sensors::kGnssPosition;
   int count = 0, rejected = 0;
-  Band mean_nis;                   // E[NIS] = the measurement's rows
-  std::vector<Band> axis_nis;      // per row: E[nu_i^2 / S_ii] = 1
+  Band mean_nis;               // E[NIS] = the measurement's rows
+  std::vector<Band> axis_nis;  // per row: E[nu_i^2 / S_ii] = 1
   Eigen::VectorXd rms;
   std::vector<double> autocorrelation;  // of the normalised innovations (mean over axes), lags 0..
   double ljung_box = 0.0, ljung_box_p = 1.0;

@@ -52,19 +52,23 @@ std::string check_json(const ModelCheck& mc) {
   return list(mc.sensors.size(), [&](size_t i) {
     const SensorCheck& s = mc.sensors[i];
     std::ostringstream o;
-    o << "{\"sensor\": " << str(std::string(s.sensor)) << ", \"count\": " << s.count
-      << ", \"rejected\": " << s.rejected << ", \"mean_nis\": " << num(s.mean_nis.value) << ", \"mean_nis_band\": ["
-      << num(s.mean_nis.lo) << ", " << num(s.mean_nis.hi) << "], \"axis_nis\": "
-      << list(s.axis_nis.size(), [&](size_t a) { return num(s.axis_nis[a].value); }) << ", \"rms\": "
-      << list(static_cast<size_t>(s.rms.size()), [&](size_t a) { return num(s.rms(static_cast<int>(a))); }) << ", \"ljung_box\": " << num(s.ljung_box)
-      << ", \"ljung_box_p\": " << num(s.ljung_box_p) << ", \"effective_n\": " << num(s.effective_n)
-      << ", \"ok\": " << (s.ok() ? "true" : "false") << ", \"segments\": "
-      << list(s.segments.size(), [&](size_t k) {
-           const SegmentCheck& g = s.segments[k];
-           return "{\"segment\": " + str(segment_name(g.segment)) + ", \"count\": " + std::to_string(g.count) +
-                  ", \"mean_nis\": " + num(g.mean_nis.value) + ", \"ok\": " + (g.mean_nis.ok() ? "true" : "false") +
-                  ", \"rms\": " + list(3, [&](size_t a) { return num(g.rms(a)); }) + "}";
-         })
+    o << "{\"sensor\": " << str(std::string(s.sensor)) << ", \"count\": " << s.count << ", \"rejected\": " << s.rejected
+      << ", \"mean_nis\": " << num(s.mean_nis.value) << ", \"mean_nis_band\": [" << num(s.mean_nis.lo) << ", "
+      << num(s.mean_nis.hi)
+      << "], \"axis_nis\": " << list(s.axis_nis.size(), [&](size_t a) { return num(s.axis_nis[a].value); })
+      << ", \"rms\": "
+      << list(static_cast<size_t>(s.rms.size()), [&](size_t a) { return num(s.rms(static_cast<int>(a))); })
+      << ", \"ljung_box\": " << num(s.ljung_box) << ", \"ljung_box_p\": " << num(s.ljung_box_p)
+      << ", \"effective_n\": " << num(s.effective_n) << ", \"ok\": " << (s.ok() ? "true" : "false")
+      << ", \"segments\": "
+      << list(s.segments.size(),
+              [&](size_t k) {
+                const SegmentCheck& g = s.segments[k];
+                return "{\"segment\": " + str(segment_name(g.segment)) + ", \"count\": " + std::to_string(g.count) +
+                       ", \"mean_nis\": " + num(g.mean_nis.value) +
+                       ", \"ok\": " + (g.mean_nis.ok() ? "true" : "false") +
+                       ", \"rms\": " + list(3, [&](size_t a) { return num(g.rms(a)); }) + "}";
+              })
       << "}";
     return o.str();
   });

@@ -31,8 +31,9 @@ void print_check(std::ostream& out, const ModelCheck& mc) {
     out << "  " << std::string(s.sensor) << ": " << s.count << " measurements, " << s.rejected
         << " gate rejections; mean NIS " << fmt("%.2f", s.mean_nis.value) << " (band " << fmt("%.2f", s.mean_nis.lo)
         << ".." << fmt("%.2f", s.mean_nis.hi) << ") "
-        << (s.optimistic() ? "TOO HIGH (errors larger than the model says)"
-                           : s.pessimistic() ? "low (the model is pessimistic: noise larger than needed)" : "ok")
+        << (s.optimistic()    ? "TOO HIGH (errors larger than the model says)"
+            : s.pessimistic() ? "low (the model is pessimistic: noise larger than needed)"
+                              : "ok")
         << "\n";
     out << "    per row" << (s.axis_nis.size() == 3 && s.sensor.starts_with("gnss") ? " N E D" : "") << ":";
     for (const Band& b : s.axis_nis) out << " " << fmt("%.2f", b.value);
@@ -45,8 +46,9 @@ void print_check(std::ostream& out, const ModelCheck& mc) {
         << fmt("%.0f", s.effective_n) << "\n";
     for (const SegmentCheck& g : s.segments)
       out << "    " << segment_name(g.segment) << std::string(14 - std::string(segment_name(g.segment)).size(), ' ')
-          << fmt("%5.0f", g.count) << "  mean NIS " << fmt("%7.2f", g.mean_nis.value) << (g.mean_nis.ok() ? "   " : " ! ")
-          << " RMS " << rms_text(g.rms) << (g.rejected ? "  rejected " + std::to_string(g.rejected) : std::string()) << "\n";
+          << fmt("%5.0f", g.count) << "  mean NIS " << fmt("%7.2f", g.mean_nis.value)
+          << (g.mean_nis.ok() ? "   " : " ! ") << " RMS " << rms_text(g.rms)
+          << (g.rejected ? "  rejected " + std::to_string(g.rejected) : std::string()) << "\n";
   }
 }
 

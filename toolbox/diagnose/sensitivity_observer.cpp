@@ -75,7 +75,7 @@ void SensitivityObserver::on_update(const est::InnovationRecord& r, const Eigen:
   // Linearisation point at the measurement epoch (the state was just corrected: a negligible change).
   const est::LinearizationPoint lp = filter_.linearization_point();
   SensitivityRecord rec = SensitivityRecord::from(r);
-  rec.s = H * Psi_;  // rows x P
+  rec.s = H * Psi_;                                                  // rows x P
   const Eigen::MatrixXd G = est::gyro_error_coupling(r.sensor, lp);  // a gyro error enters directly
   for (const Candidate& c : set_.candidates) {
     const est::Effect& e = *c.effect;

@@ -24,7 +24,7 @@ struct SensitivityRecord {
   double nis = 0.0;
   bool accepted = true;  // applied to the state (the robust update may apply an outlier with a trace of weight)
   bool used = true;      // applied with at least a quarter of its weight (est::InnovationRecord::used)
-  Eigen::MatrixXd s;  // d(innovation)/d(e), rows x P
+  Eigen::MatrixXd s;     // d(innovation)/d(e), rows x P
 
   // The filter's record of a measurement, without sensitivities.
   static SensitivityRecord from(const est::InnovationRecord& r);

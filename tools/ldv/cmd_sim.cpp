@@ -175,7 +175,8 @@ void add_sim_command(CLI::App& app) {
       ->delimiter(',')
       ->expected(3);
   cmd->add_option("--odo-noise", v.odo_noise_mps, "odometer white noise std [m/s]")->capture_default_str();
-  cmd->add_option("--odo-quantum", v.odo_quantum_mps, "odometer speed resolution [m/s] (0: none)")->capture_default_str();
+  cmd->add_option("--odo-quantum", v.odo_quantum_mps, "odometer speed resolution [m/s] (0: none)")
+      ->capture_default_str();
   cmd->add_option("--wheel-slip", v.wheel_slip_deg_per_mps2,
                   "side slip on turns [deg per m/s^2 of lateral acceleration], drifting to the outside");
   cmd->add_flag("--no-noise", opts->no_noise, "no random noise (sensor and GNSS); deterministic errors stay");
