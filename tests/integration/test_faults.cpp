@@ -43,19 +43,6 @@ const std::vector<std::pair<std::string, double>> kKills{{"imu_acq", 23.0}, {"gn
 constexpr double kFingerprintsAt_s = 55.0;
 constexpr double kEnd_s = 61.0;
 
-const char* kScenario = R"(name: faults_drive
-description: "a short static start, then straights and turns at 10 m/s"
-start: {lat_deg: 32.8801, lon_deg: -117.2340, h_m: 100, yaw_deg: 20}
-segments:
-  - {type: static, duration_s: 8}
-  - {type: accelerate, to_speed_mps: 10, duration_s: 5}
-loop:
-  - {type: straight, duration_s: 5}
-  - {type: turn, angle_deg: 90, duration_s: 7}
-  - {type: straight, duration_s: 4}
-  - {type: turn, angle_deg: -120, duration_s: 8}
-)";
-
 // Shifts the latitude of the GGA sentence nearest to `at_s` after the first one by `north_m`, keeping
 // its length (the device schedule holds byte offsets). Returns the GPS time of day of that epoch.
 double inject_gga_jump(const fs::path& nmea_path, double at_s, double north_m) {
@@ -134,7 +121,7 @@ TEST(Faults, GivenTheVehicleSystem_WhenEachServiceIsKilledAndBadInputArrives_The
   const fs::path dir = fs::temp_directory_path() / ("ldv_faults_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir / "sim");
-  std::ofstream(dir / "scenario.yaml") << kScenario;
+  std::ofstream(dir / "scenario.yaml") << test::kShortDriveScenario;
 
   // Given a tactical-grade drive whose GPS time starts a little after now
   const double lead_s = 12.0;

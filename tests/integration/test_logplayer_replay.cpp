@@ -31,19 +31,6 @@ const std::string kTspiUrl = "udpm://239.255.77.1:7668?ttl=1";
 const std::string kLogplayer = "/usr/bin/lcm-logplayer";
 constexpr double kDriveDuration_s = 40.0;
 
-const char* kScenario = R"(name: logplayer_drive
-description: "a short static start, then straights and turns at 10 m/s"
-start: {lat_deg: 32.8801, lon_deg: -117.2340, h_m: 100, yaw_deg: 20}
-segments:
-  - {type: static, duration_s: 8}
-  - {type: accelerate, to_speed_mps: 10, duration_s: 5}
-loop:
-  - {type: straight, duration_s: 5}
-  - {type: turn, angle_deg: 90, duration_s: 7}
-  - {type: straight, duration_s: 4}
-  - {type: turn, angle_deg: -120, duration_s: 8}
-)";
-
 // Every message of one channel in an LCM log, decoded, in log order.
 template <class Msg>
 std::vector<Msg> read_channel(const std::string& path, const std::string& channel) {
@@ -84,7 +71,7 @@ TEST(
   const fs::path dir = fs::temp_directory_path() / ("ldv_logplayer_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir / "sim");
-  std::ofstream(dir / "scenario.yaml") << kScenario;
+  std::ofstream(dir / "scenario.yaml") << test::kShortDriveScenario;
 
   // Given a tactical-grade drive whose GPS time starts a little after now (a vehicle's host clock is GPS time)
   const double start_total_s = std::ceil(test::gps_total_seconds_now() + 10.0);

@@ -34,6 +34,21 @@
 
 namespace ldv::test {
 
+// The drive of the whole-vehicle tests (an `ldv sim` scenario): a short static start, then straights and
+// turns at 10 m/s, repeated.
+inline const char* const kShortDriveScenario = R"(name: integration_drive
+description: "a short static start, then straights and turns at 10 m/s"
+start: {lat_deg: 32.8801, lon_deg: -117.2340, h_m: 100, yaw_deg: 20}
+segments:
+  - {type: static, duration_s: 8}
+  - {type: accelerate, to_speed_mps: 10, duration_s: 5}
+loop:
+  - {type: straight, duration_s: 5}
+  - {type: turn, angle_deg: 90, duration_s: 7}
+  - {type: straight, duration_s: 4}
+  - {type: turn, angle_deg: -120, duration_s: 8}
+)";
+
 inline double steady_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
