@@ -88,6 +88,19 @@ class AidJacobians : public ::testing::Test {
     return t;
   }
   double eps_for(int i) const { return i < 6 ? 1e-3 : 1e-6; }
+  // The one measurement the named aid takes at `nav` (it must be due there), the covariance P = p_var I.
+  Measurement measure_once(const std::string& aid, const NavState& nav, const StaticDetector& detector, double p_var) {
+    const LinearizationPoint lp = lp_of(truth);
+    const Eigen::MatrixXd P = Eigen::MatrixXd::Identity(layout.size(), layout.size()) * p_var;
+    const Vec3 f_smooth = Vec3::Zero();
+    const AidContext ctx{nav, lp, layout, opt, P, detector, f_smooth, false, 1.0, faults};
+    auto updater = make_updater(aid, opt);
+    EXPECT_TRUE(updater->due(ctx)) << aid;
+    std::vector<Measurement> out;
+    updater->measure(ctx, out);
+    EXPECT_EQ(out.size(), 1u) << aid;
+    return out.empty() ? Measurement() : out.front();
+  }
 
   FilterOptions opt;
   StateLayout layout;
@@ -96,17 +109,7 @@ class AidJacobians : public ::testing::Test {
 };
 
 TEST_F(AidJacobians, NonHolonomicHMatchesNumericalDerivative) {
-  const LinearizationPoint lp = lp_of(truth);
-  const Eigen::MatrixXd P = Eigen::MatrixXd::Identity(layout.size(), layout.size());
-  const StaticDetector detector(0.5, 0.05, 0.01);
-  const Vec3 f_smooth = Vec3::Zero();
-  const AidContext ctx{truth.nav, lp, layout, opt, P, detector, f_smooth, false, 1.0, faults};
-  auto nhc = make_updater("nhc", opt);
-  ASSERT_TRUE(nhc->due(ctx));
-  std::vector<Measurement> out;
-  nhc->measure(ctx, out);
-  ASSERT_EQ(out.size(), 1u);
-  const Measurement& m = out[0];
+  const Measurement m = measure_once("nhc", truth.nav, StaticDetector(0.5, 0.05, 0.01), 1.0);
   ASSERT_EQ(m.rows(), 2);
   EXPECT_EQ(m.sensor, sensors::kNonHolonomic);
   const Vec3 v_v = vehicle_velocity_model(truth);
@@ -144,16 +147,8 @@ TEST_F(AidJacobians, ZeroAngularRateHMatchesNumericalDerivative) {
   StaticDetector detector(0.5, 0.05, 0.01);
   for (int k = 0; k < 100; ++k) detector.add(0.01, t.w_ib_b, f_b);
   ASSERT_TRUE(detector.is_static());
-  const LinearizationPoint lp = lp_of(t);
-  const Eigen::MatrixXd P = Eigen::MatrixXd::Identity(layout.size(), layout.size()) * 1e-6;
-  const Vec3 f_smooth = Vec3::Zero();
-  const AidContext ctx{t.nav, lp, layout, opt, P, detector, f_smooth, false, 1.0, faults};
-  auto zaru = make_updater("zaru", opt);
-  ASSERT_TRUE(zaru->due(ctx));
-  std::vector<Measurement> out;
-  zaru->measure(ctx, out);
-  ASSERT_EQ(out.size(), 1u);
-  const Measurement& m = out[0];
+  const Measurement m = measure_once("zaru", t.nav, detector, 1e-6);
+  ASSERT_EQ(m.rows(), 3);
   auto rate_model = [](const AidTruth& a) {
     return Vec3(a.w_ib_b - a.nav.C_b_n().transpose() * earth::omega_ie_n(a.nav.pos.lat_rad));
   };
