@@ -32,11 +32,11 @@ const Screenable kScreenable[] = {
     {"odometer_lever_arm", 3.0},  // m
 };
 
-// The aid an effect needs to be seen at all (nullptr: GNSS sees it).
-const char* aid_needed(const std::string& name) {
-  if (name == "vehicle_mounting") return "nhc";
-  if (name == "odometer_scale" || name == "odometer_lever_arm") return "odometer";
-  return nullptr;
+// Whether the measurements of this run see the effect at all: the vehicle-frame effects enter only the aids.
+bool seen_with(const std::string& name, const est::AidOptions& aids) {
+  if (name == "vehicle_mounting") return aids.has("nhc") || aids.has("odometer");
+  if (name == "odometer_scale" || name == "odometer_lever_arm") return aids.has("odometer");
+  return true;  // GNSS sees it
 }
 
 }  // namespace
@@ -79,8 +79,7 @@ CandidateSet make_candidates(const est::FilterOptions& options, const std::vecto
   const est::EffectRegistry& reg = est::effect_registry();
   for (const Screenable& s : kScreenable) {
     if (std::find(model_effects.begin(), model_effects.end(), s.name) != model_effects.end()) continue;
-    const char* aid = aid_needed(s.name);
-    if (aid && !(options.aids.has(aid) || (std::string(aid) == "nhc" && options.aids.has("odometer")))) continue;
+    if (!seen_with(s.name, options.aids)) continue;
     Candidate c;
     c.name = s.name;
     c.effect = reg.make(s.name, options);
