@@ -9,27 +9,29 @@ namespace {
 
 struct Screenable {
   const char* name;
-  double plausible_si;  // per state
+  double plausible_si;     // per state
+  const char* excitation;  // the manoeuvres that make it visible (how to separate it from its look-alikes)
 };
 
 // Constant-parameter effects of the vocabulary and the largest size any IMU/GNSS set-up plausibly has:
 // a component whose minimal detectable size on this drive exceeds it cannot be tested here.
 constexpr double kDegH = 3.141592653589793 / 180.0 / 3600.0;
 const Screenable kScreenable[] = {
-    {"lever_arm", 3.0},    // m
-    {"time_offset", 0.5},  // s
-    {"gyro_scale", 0.02},  // 20000 ppm
-    {"accel_scale", 0.02},
-    {"gyro_misalignment", 0.01},  // rad (2000 arcsec)
-    {"accel_misalignment", 0.01},
-    {"g_sensitivity", 2000.0 * kDegH / 9.80665},  // 2000 deg/h/g (MEMS: ~0.1 deg/s/g)
-    {"gravity_anomaly", 2e-3},                    // 200 mGal
-    {"gyro_bias", 1000.0 * kDegH},                // only when dropped from the model
-    {"accel_bias", 0.1},
+    {"lever_arm", 3.0, "turns and attitude changes"},  // m
+    {"time_offset", 0.5, "speed changes and high speed"},  // s
+    {"gyro_scale", 0.02, "large rotations (turns both ways for z, hills for y, banked roads for x)"},  // 20000 ppm
+    {"accel_scale", 0.02, "strong acceleration and braking (x), fast turns (y), vertical motion (z)"},
+    {"gyro_misalignment", 0.01, "rotation about one axis while pitched or banked"},  // rad (2000 arcsec)
+    {"accel_misalignment", 0.01, "acceleration along one axis: braking, turns, hills"},
+    {"g_sensitivity", 2000.0 * kDegH / 9.80665,
+     "changes of specific force: hard acceleration and braking, hills"},  // 2000 deg/h/g (MEMS: ~0.1 deg/s/g)
+    {"gravity_anomaly", 2e-3, "heading changes over a long distance"},  // 200 mGal
+    {"gyro_bias", 1000.0 * kDegH, "heading changes and static periods"},  // only when dropped from the model
+    {"accel_bias", 0.1, "heading changes and attitude changes"},
     // Seen only through the land-vehicle aids (screened when the aid is on).
-    {"vehicle_mounting", 0.1},    // rad (6 deg beyond the coarse mounting)
-    {"odometer_scale", 0.05},     // 5 %
-    {"odometer_lever_arm", 3.0},  // m
+    {"vehicle_mounting", 0.1, "steady speed (yaw, pitch) and turns (roll)"},  // rad (6 deg beyond the coarse mounting)
+    {"odometer_scale", 0.05, "distance at steady speed"},  // 5 %
+    {"odometer_lever_arm", 3.0, "turns at speed"},         // m
 };
 
 // Whether the measurements of this run see the effect at all: the vehicle-frame effects enter only the aids.
@@ -95,6 +97,7 @@ CandidateSet make_candidates(const est::FilterOptions& options, const std::vecto
     if (c.name == "odometer_lever_arm") c.assumed_si = options.odometer_lever_arm.init;
     if (c.name == "odometer_scale") c.assumed_si(0) = options.odometer_scale_init;
     c.plausible_si = Eigen::VectorXd::Constant(c.dim, s.plausible_si);
+    c.excitation = s.excitation;
     set.columns += c.dim;
     set.candidates.push_back(std::move(c));
   }

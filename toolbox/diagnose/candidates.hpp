@@ -23,6 +23,7 @@ struct Candidate {
   est::PrintUnit unit;
   Eigen::VectorXd assumed_si;    // value the model under test uses (configured lever arm / time offset, else 0)
   Eigen::VectorXd plausible_si;  // largest plausible size per state: below it a detectable size means "testable"
+  std::string excitation;        // the manoeuvres that make it visible
 };
 
 // An effect of the vocabulary that is not screened, and why.

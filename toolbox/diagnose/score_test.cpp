@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <map>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -21,23 +20,6 @@ struct EpochScore {
   Segment segment = Segment::kStraight;
   std::vector<int> records;
 };
-
-// What excites each effect: used to name the manoeuvre that separates a group.
-const std::map<std::string, std::string>& excitation() {
-  static const std::map<std::string, std::string> m = {
-      {"lever_arm", "turns and attitude changes"},
-      {"time_offset", "speed changes and high speed"},
-      {"gyro_scale", "large rotations (turns both ways for z, hills for y, banked roads for x)"},
-      {"accel_scale", "strong acceleration and braking (x), fast turns (y), vertical motion (z)"},
-      {"gyro_misalignment", "rotation about one axis while pitched or banked"},
-      {"accel_misalignment", "acceleration along one axis: braking, turns, hills"},
-      {"g_sensitivity", "changes of specific force: hard acceleration and braking, hills"},
-      {"gravity_anomaly", "heading changes over a long distance"},
-      {"gyro_bias", "heading changes and static periods"},
-      {"accel_bias", "heading changes and attitude changes"},
-  };
-  return m;
-}
 
 Eigen::MatrixXd select(const Eigen::MatrixXd& M, const std::vector<int>& rows, const std::vector<int>& cols) {
   Eigen::MatrixXd out(rows.size(), cols.size());
@@ -85,7 +67,7 @@ ScreeningResult screen(const CandidateSet& set, const std::vector<SensitivityRec
   }
   const int n = static_cast<int>(epochs.size());
   res.epochs = n;
-  // Per-epoch whitened sensitivity and innovation: S^-1/2 s, S^-1/2 nu (3 per record).
+  // Per-epoch whitened sensitivity and innovation: S^-1/2 s, S^-1/2 nu (the record's rows per record).
   std::vector<Eigen::MatrixXd> A(n);  // rows: whitened measurement components, cols: P
   std::vector<Eigen::VectorXd> y(n);
   Eigen::MatrixXd J = Eigen::MatrixXd::Zero(P, P);
@@ -93,16 +75,18 @@ ScreeningResult screen(const CandidateSet& set, const std::vector<SensitivityRec
   std::array<Eigen::MatrixXd, kSegmentCount> J_seg;
   for (auto& Js : J_seg) Js = Eigen::MatrixXd::Zero(P, P);
   for (int k = 0; k < n; ++k) {
-    const int m = 3 * static_cast<int>(epochs[k].records.size());
+    int m = 0;
+    for (int ri : epochs[k].records) m += static_cast<int>(records[ri].innovation.size());
     A[k].resize(m, P);
     y[k].resize(m);
     int row = 0;
     for (int ri : epochs[k].records) {
       const SensitivityRecord& r = records[ri];
-      const Eigen::LLT<Mat3> llt(r.S);
-      A[k].middleRows(row, 3) = llt.matrixL().solve(r.s);
-      y[k].segment(row, 3) = llt.matrixL().solve(r.innovation);
-      row += 3;
+      const int rows = static_cast<int>(r.innovation.size());
+      const Eigen::LLT<Eigen::MatrixXd> llt(r.S);
+      A[k].middleRows(row, rows) = llt.matrixL().solve(r.s);
+      y[k].segment(row, rows) = llt.matrixL().solve(r.innovation);
+      row += rows;
     }
     const Eigen::MatrixXd Jk = A[k].transpose() * A[k];
     J += Jk;
@@ -228,9 +212,14 @@ ScreeningResult screen(const CandidateSet& set, const std::vector<SensitivityRec
         best = segment_name(static_cast<Segment>(s));
       }
     }
-    cs.separate_by = "more " + excitation().at(cs.name);
+    const auto excitation = [&](const std::string& name) {
+      for (const Candidate& c : set.candidates)
+        if (c.name == name) return c.excitation;
+      return std::string("?");
+    };
+    cs.separate_by = "more " + excitation(cs.name);
     for (const std::string& other : cs.group)
-      if (other != cs.name) cs.separate_by += "; " + other + " needs " + excitation().at(other);
+      if (other != cs.name) cs.separate_by += "; " + other + " needs " + excitation(other);
     if (!best.empty() && best_corr < opt.group_correlation)
       cs.separate_by += "; on this drive the '" + best + "' segments separate them best (correlation " +
                         std::to_string(best_corr).substr(0, 4) + ")";

@@ -5,6 +5,7 @@
 // Inputs as `ldv nav` takes them from files (KF-GINS text, tagged IMU CSV, RTKLIB .pos).
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -35,8 +36,10 @@ struct DiagnoseArgs {
 
 constexpr int kMaxIterations = 12;
 
-// The user's configuration with the verdict's effects added to ldv.add, their estimates as comments.
-void write_tuned_config(const std::string& config_path, const diag::Diagnosis& d, const std::string& out_path) {
+// The user's configuration with the verdict's effects added to ldv.add, their estimates as comments, and the
+// aids and odometer file the diagnosis ran with (so the tuned run sees what the diagnosis saw).
+void write_tuned_config(const std::string& config_path, const diag::Diagnosis& d, const est::AidOptions& aids,
+                        const std::string& odometer_path, const std::string& out_path) {
   YAML::Node root;
   try {
     root = YAML::LoadFile(config_path);
@@ -53,7 +56,17 @@ void write_tuned_config(const std::string& config_path, const diag::Diagnosis& d
     if (e.name == "lever_arm" && e.value_si.size() == 3)
       root["antlever"] = std::vector<double>{e.value_si(0), e.value_si(1), e.value_si(2)};
     if (e.name == "time_offset" && e.value_si.size() == 1) root["ldv"]["time_offset_s"] = e.value_si(0);
+    if (e.name == "odometer_scale" && e.value_si.size() == 1) root["ldv"]["odometer_scale"] = e.value_si(0);
+    if (e.name == "odometer_lever_arm" && e.value_si.size() == 3)
+      root["ldv"]["odometer_lever_arm_m"] = std::vector<double>{e.value_si(0), e.value_si(1), e.value_si(2)};
+    if (e.name == "vehicle_mounting" && e.value_si.size() == 3) {
+      // The residual rotation goes into the coarse mounting: C_b_v = C_coarse C(mu).
+      const Vec3 rpy = euler_from_C_b_n(C_b_n_from_euler(aids.mounting_rpy_rad) * C_b_n_from_euler(e.value_si.head<3>()));
+      root["ldv"]["vehicle_mounting_deg"] = std::vector<double>{rpy.x() * kRadToDeg, rpy.y() * kRadToDeg, rpy.z() * kRadToDeg};
+    }
   }
+  if (!aids.enabled.empty()) root["ldv"]["aids"] = aids.enabled;
+  if (!odometer_path.empty()) root["ldv"]["odopath"] = std::filesystem::absolute(odometer_path).string();
   if (d.imu_noise_applied && root["imunoise"]) {  // the noise as installed replaces the configured floor
     for (const char* key : {"arw", "vrw"}) {
       if (!root["imunoise"][key] || !root["imunoise"][key].IsSequence()) continue;
@@ -106,7 +119,7 @@ void run_diagnose(const DiagnoseArgs& a) {
   diag::print_report(std::cout, d);
   if (!a.json.empty()) diag::write_json(d, a.json);
   if (!a.write_config.empty()) {
-    write_tuned_config(loaded.config.config_path, d, a.write_config);
+    write_tuned_config(loaded.config.config_path, d, opt.model.aids, a.inputs.odometer, a.write_config);
     if (!a.quiet) std::cerr << "ldv diagnose: tuned configuration written to " << a.write_config << "\n";
   }
   if (!a.plots.empty()) {
