@@ -349,7 +349,7 @@ void NavFilter::flush_covariance() {
   // Process noise: sensor white noise rotated into n, effect driving noise.
   const Mat3 C = c_.nav.C_b_n();
   Eigen::MatrixXd Qd;
-  const bool want = observer_ && observer_->wants_matrices();
+  const bool want = observer_.p && observer_.p->wants_matrices();
   const double q_scale = c_.imu_noise_scale;
   const Mat3 Qv = C * opt_.vrw_mps_per_sqrt_s.cwiseAbs2().asDiagonal() * C.transpose() * (T * q_scale);
   const Mat3 Qp = C * opt_.arw_rad_per_sqrt_s.cwiseAbs2().asDiagonal() * C.transpose() * (T * q_scale);
@@ -366,7 +366,7 @@ void NavFilter::flush_covariance() {
     Qd.block<3, 3>(kVel, kVel) = Qv;
     Qd.block<3, 3>(kAtt, kAtt) = Qp;
     Qd.diagonal().tail(m) = q_c_ * T;
-    observer_->on_propagation(c_.nav.t_s, T, Phi, Qd);
+    observer_.p->on_propagation(c_.nav.t_s, T, Phi, Qd);
   }
 
   c_.acc_T_s = 0.0;
@@ -492,7 +492,7 @@ void NavFilter::apply_measurement(const Measurement& m) {
   InnovationRecord rec;
   rec.t_s = c_.nav.t_s;
   rec.replayed = replaying_;
-  const bool want = observer_ && observer_->wants_matrices();
+  const bool want = observer_.p && observer_.p->wants_matrices();
   if (force) {
     // Re-synchronise: the state has diverged from a measurement stream it kept rejecting, so open the
     // measured block's variance by the innovation before accepting.
@@ -534,7 +534,7 @@ void NavFilter::apply_measurement(const Measurement& m) {
     if (m.gnss) c_.status |= kStatusGnssRejected;
   }
   innovations_.push_back(rec);
-  if (want) observer_->on_update(rec, m.H, K_);
+  if (want) observer_.p->on_update(rec, m.H, K_);
   check_health(false);
 }
 

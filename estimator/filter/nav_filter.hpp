@@ -11,8 +11,8 @@
 //    its epoch and re-processes the kept raw IMU history with it inserted, so the result equals the
 //    on-time result (live use: GNSS solutions arrive ~0.1-1 s late). Snapshots: every 0.2 s.
 // Aids that watch the IMU stream (ZUPT, ZARU, NHC: estimator/update/updater.hpp) run after each sample.
-// A copy of a filter is an exact checkpoint: it continues exactly as the original would (the observer
-// pointer is copied too; set_observer(nullptr) on a copy that must not report).
+// A copy of a filter is an exact checkpoint: it continues exactly as the original would. The copy has no
+// observer (the original's belongs to the original's owner); set one on it if it should report.
 // Covariance: accumulated F over IMU samples, propagated at most every options.cov_period_s and at every
 // measurement with Phi = I + F T + (F T)^2 / 2, exploiting the nav / effect block structure.
 #include <Eigen/Core>
@@ -70,7 +70,7 @@ class NavFilter {
   // Records since the last call (pre-update innovations with gate decisions).
   std::vector<InnovationRecord> take_innovations();
   const std::vector<InnovationRecord>& innovations() const { return innovations_; }
-  void set_observer(FilterObserver* observer) { observer_ = observer; }
+  void set_observer(FilterObserver* observer) { observer_.p = observer; }
   // Chi-square gate of a measurement with `dof` rows (gate_threshold(): the 3-D GNSS one).
   double gate_threshold(int dof = 3) const;
   // Where the measurement models linearise now: attitude, compensated rates, the effects' estimates.
@@ -155,7 +155,21 @@ class NavFilter {
 
   FaultCounters faults_;
   std::vector<InnovationRecord> innovations_;
-  FilterObserver* observer_ = nullptr;
+  // Not taken over by a copy (a checkpoint must not report into its original's observer); a move keeps it.
+  struct ObserverPtr {
+    FilterObserver* p = nullptr;
+    ObserverPtr() = default;
+    ObserverPtr(const ObserverPtr&) {}
+    ObserverPtr(ObserverPtr&& o) noexcept : p(o.p) {}
+    ObserverPtr& operator=(const ObserverPtr&) {
+      p = nullptr;
+      return *this;
+    }
+    ObserverPtr& operator=(ObserverPtr&& o) noexcept {
+      p = o.p;
+      return *this;
+    }
+  } observer_;
   Eigen::VectorXd dx_;
   Eigen::MatrixXd K_;
 };

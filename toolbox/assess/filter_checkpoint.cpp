@@ -4,7 +4,6 @@ namespace ldv::assess {
 
 FilterCheckpoint capture_checkpoint(const est::NavFilter& running, double gnss_until_s) {
   FilterCheckpoint c{running};
-  c.filter.set_observer(nullptr);  // the original's observer belongs to the original's owner
   c.filter.take_innovations();
   c.filter.drop_queued_gnss_after(gnss_until_s);
   return c;

@@ -6,8 +6,8 @@
 // moving biases' split and ramp rates, the GNSS position bias, ...), the mechanisation's previous increment
 // (coning/sculling), the adapted IMU noise scale, the ZUPT detector, the snapshots and IMU history a late fix
 // rewinds to. What the copy does not take over from the original:
-//  - its observer (`NavFilter::set_observer`, a raw pointer to an object the original's owner keeps): the copy
-//    reports to nobody; set one on the restored filter to watch a restart;
+//  - its observer (no copy of a NavFilter does: nav_filter.hpp); set one on the restored filter to watch a
+//    restart;
 //  - innovation records not yet taken (outputs of the original's past, not state);
 //  - fixes queued ahead of the IMU with a time tag after `gnss_until_s`: a checkpoint restarts into a GNSS
 //    outage, and those fixes belong to it. Fixes up to it stay (one due at the restart epoch, e.g. with a
