@@ -83,4 +83,43 @@ bool is_valid(const ldv_lcm::gnss_solution_t& m) {
                               m.vel_var_ned_m2s2[0] > 0 && m.vel_var_ned_m2s2[1] > 0 && m.vel_var_ned_m2s2[2] > 0));
 }
 
+bool is_valid(const ldv_lcm::wheel_speed_t& m) {
+  const size_t n = static_cast<size_t>(m.num_wheels);
+  if (m.num_wheels < 1 || m.num_wheels > 8 || m.wheel_id.size() != n || m.speed_mps.size() != n || m.counts.size() != n)
+    return false;
+  if (!std::isfinite(m.gps_sow_s) || m.gps_sow_s < 0 || m.gps_sow_s >= 604800.0 || m.gps_week < 0) return false;
+  for (size_t i = 0; i < n; ++i)
+    if (!std::isfinite(m.speed_mps[i]) || std::abs(m.speed_mps[i]) > 150.0 || m.wheel_id[i] < 0 || m.wheel_id[i] > 4)
+      return false;
+  return std::isfinite(m.counts_per_m) && std::isfinite(m.latency_s);
+}
+
+std::optional<double> odometer_speed_from_message(const ldv_lcm::wheel_speed_t& m) {
+  if (!is_valid(m) || !(m.status & kWheelStatusSpeedsValid) || (m.status & kWheelStatusSlipping)) return std::nullopt;
+  double rear_sum = 0.0, all_sum = 0.0;
+  int rear = 0;
+  for (int i = 0; i < m.num_wheels; ++i) {
+    if (m.wheel_id[i] == 0) return m.speed_mps[i];
+    if (m.wheel_id[i] == 3 || m.wheel_id[i] == 4) {
+      rear_sum += m.speed_mps[i];
+      ++rear;
+    }
+    all_sum += m.speed_mps[i];
+  }
+  return rear > 0 ? rear_sum / rear : all_sum / m.num_wheels;
+}
+
+ldv_lcm::wheel_speed_t message_from_odometer(double t_s, double speed_mps, int gps_week, int64_t seq) {
+  ldv_lcm::wheel_speed_t m{};
+  m.seq = seq;
+  m.gps_week = gps_week;
+  m.gps_sow_s = t_s;
+  m.num_wheels = 1;
+  m.wheel_id = {0};
+  m.speed_mps = {speed_mps};
+  m.counts = {0};
+  m.status = kWheelStatusSpeedsValid;
+  return m;
+}
+
 }  // namespace ldv

@@ -3,6 +3,8 @@
 // services and the offline log readers convert identically (the same data gives the same result).
 #include <ldv_lcm/gnss_solution_t.hpp>
 #include <ldv_lcm/imu_sample_t.hpp>
+#include <ldv_lcm/wheel_speed_t.hpp>
+#include <optional>
 
 #include "common/formats/nav_types.hpp"
 
@@ -24,8 +26,20 @@ constexpr int32_t kImuStatusTimeExtrapolated = 1 << 0;
 constexpr int32_t kImuStatusDeviceError = 1 << 1;
 inline bool has_gps_time(const ldv_lcm::imu_sample_t& m) { return (m.status & kImuStatusTimeExtrapolated) == 0; }
 
+// wheel_speed_t.status bits (lcmtypes/wheel_speed_t.lcm).
+constexpr int32_t kWheelStatusSpeedsValid = 1 << 0;
+constexpr int32_t kWheelStatusSlipping = 1 << 2;
+// The forward speed of the rear-axle centre [m/s] (the odometer point of estimator/update/odometer.hpp): the
+// odometer's own (wheel 0), else the mean of the rear wheels (3, 4), else the mean of every wheel. Nothing when
+// the speeds are not flagged valid or a wheel is flagged locked or slipping (its speed is not the vehicle's).
+std::optional<double> odometer_speed_from_message(const ldv_lcm::wheel_speed_t& m);
+// One odometer speed as a one-wheel message (wheel 0), speeds valid.
+ldv_lcm::wheel_speed_t message_from_odometer(double t_s, double speed_mps, int gps_week, int64_t seq);
+
 // True when every number in the message is finite and the std/quality fields are plausible.
 bool is_valid(const ldv_lcm::imu_sample_t& m);
 bool is_valid(const ldv_lcm::gnss_solution_t& m);
+// Finite, 1-8 wheels with arrays of that length, speeds within +-150 m/s, a time of week within the week.
+bool is_valid(const ldv_lcm::wheel_speed_t& m);
 
 }  // namespace ldv

@@ -8,6 +8,7 @@
 #include "estimator/calibrate/installed_imu_noise.hpp"
 #include "estimator/ins/alignment.hpp"
 #include "estimator/run/alignment_options_from.hpp"
+#include "estimator/run/nav_session.hpp"
 
 namespace ldv::est {
 namespace {
@@ -115,50 +116,6 @@ FilterOptions options_from_kfgins(const KfGinsConfig& cfg) {
 }
 
 namespace {
-struct DataAlignment {
-  NavState state;
-  NavStd std;
-  std::string method;
-  size_t imu_index = 0, gnss_index = 0;  // the first IMU sample / fix not consumed by the alignment
-  Vec3 gyro_bias_seed_rad_s = Vec3::Zero();  // a turn-on bias the static start showed (else 0)
-};
-
-std::string fixed_text(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.1f", v);
-  return b;
-}
-
-// The aligner over imu[i...] and the fixes from gnss[g...] up to each IMU epoch; throws when it never aligns.
-DataAlignment align_from_data(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
-                              const KfGinsConfig& cfg, const AlignmentOptions& ao_given, size_t i0, size_t g0) {
-  const double t1 = cfg.end_time_s < 0 ? 1e300 : cfg.end_time_s;
-  // A vehicle (or a walker) that never reaches the configured speed: RTK positions still give a course
-  // good to a few degrees at walking pace, so try once more at kSlowCourseSpeed_mps before giving up.
-  constexpr double kSlowCourseSpeed_mps = 0.5;
-  AlignmentOptions ao = ao_given;
-  for (int attempt = 0; attempt < 2; ++attempt) {
-    size_t i = i0, g = g0;
-    Aligner aligner(ao);
-    for (; i < imu.size() && imu[i].t_s <= t1 && !aligner.aligned(); ++i) {
-      aligner.add_imu(imu[i]);
-      for (; g < gnss.size() && gnss[g].t_s <= imu[i].t_s; ++g) aligner.add_gnss(gnss[g]);
-    }
-    if (aligner.aligned()) {
-      std::string method = aligner.method();
-      if (attempt > 0) method += " (the GNSS never reached " + fixed_text(ao_given.speed_min_mps) + " m/s: course from " +
-                                 fixed_text(ao.speed_min_mps) + " m/s)";
-      return {aligner.state(), aligner.std(), method, i, g, aligner.gyro_bias_seed().value_or(Vec3::Zero())};
-    }
-    if (ao.speed_min_mps <= kSlowCourseSpeed_mps) break;
-    ao.speed_min_mps = kSlowCourseSpeed_mps;
-  }
-  throw InputError(cfg.gnss_path, 0,
-                   "could not align: no static period with usable gyros and no GNSS speed above " +
-                       fixed_text(std::min(ao_given.speed_min_mps, kSlowCourseSpeed_mps)) +
-                       " m/s (give initpos/initvel/initatt in the configuration)");
-}
-
 size_t first_imu_index(const std::vector<ImuIncrement>& imu, const KfGinsConfig& cfg) {
   const double t0 = cfg.start_time_s, t1 = cfg.end_time_s < 0 ? 1e300 : cfg.end_time_s;
   auto first = std::lower_bound(imu.begin(), imu.end(), t0, [](const ImuIncrement& a, double t) { return a.t_s < t; });
@@ -166,31 +123,22 @@ size_t first_imu_index(const std::vector<ImuIncrement>& imu, const KfGinsConfig&
   if (i >= imu.size() || imu[i].t_s > t1) throw InputError(cfg.imu_path, 0, "no IMU samples between starttime and endtime");
   return i;
 }
+
+std::string could_not_align(const SessionOptions& so) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.1f", std::min(so.alignment.speed_min_mps, NavSession::kSlowCourseSpeed_mps));
+  return std::string("could not align: no static period with usable gyros and no GNSS speed above ") + b +
+         " m/s (give initpos/initvel/initatt in the configuration)";
+}
 }  // namespace
 
-double initialisation_epoch(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
-                            const KfGinsConfig& cfg, const AlignmentOptions& alignment) {
-  const size_t i = first_imu_index(imu, cfg);
-  if (cfg.init_pos && cfg.init_vel_n_mps && cfg.init_rpy_rad) return std::max(cfg.start_time_s, imu[i].t_s - imu[i].dt_s);
-  return align_from_data(imu, gnss, cfg, alignment, i, 0).state.t_s;
-}
-
-RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
-                          const KfGinsConfig& cfg, NavFilter& filter, const RunCallbacks& cb,
-                          const AlignmentOptions* alignment, const std::vector<ObservationPtr>* others) {
-  RunSummary sum;
-  const double t0 = cfg.start_time_s, t1 = cfg.end_time_s < 0 ? 1e300 : cfg.end_time_s;
-  size_t i = first_imu_index(imu, cfg);
-  size_t g = 0;
-
-  const bool given = cfg.init_pos && cfg.init_vel_n_mps && cfg.init_rpy_rad;
-  // A turn-on bias seen by the alignment's static start, taken out of every increment by the filter
-  // (FilterOptions::input_gyro_bias_rad_s): it then estimates what is left, inside its prior.
-  Vec3 gyro_bias_seed = Vec3::Zero();
-  if (given) {
+SessionOptions session_options_from(const KfGinsConfig& cfg, const FilterOptions& filter,
+                                    const AlignmentOptions* alignment) {
+  SessionOptions so;
+  so.filter = filter;
+  so.alignment = alignment ? *alignment : alignment_options_from(filter);
+  if (cfg.init_pos && cfg.init_vel_n_mps && cfg.init_rpy_rad) {
     NavState s;
-    // The given state holds at the start of the first increment (KF-GINS: at starttime).
-    s.t_s = std::max(t0, imu[i].t_s - imu[i].dt_s);
     s.pos = *cfg.init_pos;
     s.v_n_mps = *cfg.init_vel_n_mps;
     s.q_b_n = quat_from_euler(*cfg.init_rpy_rad);
@@ -198,94 +146,74 @@ RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vecto
     sd.pos_ned_m = cfg.init_pos_std_ned_m;
     sd.vel_n_mps = cfg.init_vel_std_n_mps;
     sd.att_rad = cfg.init_att_std_rad;
-    filter.initialize(s, sd);
-    sum.initialisation = "given";
-  } else {
-    const AlignmentOptions ao = alignment ? *alignment : alignment_options_from(filter.options());
-    const DataAlignment al = align_from_data(imu, gnss, cfg, ao, i, g);
-    i = al.imu_index;
-    g = al.gnss_index;
-    NavState s0 = al.state;
-    NavStd sd0 = al.std;
-    sum.initialisation = al.method;
-    gyro_bias_seed = al.gyro_bias_seed_rad_s;
-    if (!gyro_bias_seed.isZero()) {
-      char buf[160];
-      std::snprintf(buf, sizeof buf, "; gyro turn-on bias from the static start [%.4f %.4f %.4f] deg/s taken out",
-                    gyro_bias_seed.x() * kRadToDeg, gyro_bias_seed.y() * kRadToDeg, gyro_bias_seed.z() * kRadToDeg);
-      sum.initialisation += buf;
-    }
-    if (ao.course_hypotheses > 1 && sum.initialisation.find("course") != std::string::npos) {
-      // Unknown mounting: which body heading matches the GNSS track over the next course_trial_s?
-      const double step = 2.0 * kPi / ao.course_hypotheses;
-      double best_cost = 1e300, best_dyaw = 0.0;
-      for (int k = 0; k < ao.course_hypotheses; ++k) {
-        const double dyaw = k * step;
-        NavFilter trial(filter.options());
-        NavState s = s0;
-        s.q_b_n = (Quat(Eigen::AngleAxisd(dyaw, Vec3::UnitZ())) * s0.q_b_n).normalized();
-        NavStd sd = sd0;
-        sd.att_rad.z() = std::max(sd0.att_rad.z(), 0.5 * step);
-        trial.initialize(s, sd);
-        trial.set_input_gyro_bias(gyro_bias_seed);
-        size_t gi = g;
-        while (gi < gnss.size() && gnss[gi].t_s <= s.t_s) ++gi;
-        double cost = 0.0;
-        for (size_t j = i; j < imu.size() && imu[j].t_s <= std::min(t1, s.t_s + ao.course_trial_s); ++j) {
-          for (; gi < gnss.size() && gnss[gi].t_s <= imu[j].t_s + 0.5; ++gi) trial.add_gnss(gnss[gi]);
-          trial.add_imu(imu[j]);
-          for (const auto& r : trial.take_innovations())
-            if (r.sensor == sensors::kGnssPosition) cost += std::min(r.nis, 1e6);
-        }
-        if (cost < best_cost) {
-          best_cost = cost;
-          best_dyaw = dyaw;
-        }
-      }
-      s0.q_b_n = (Quat(Eigen::AngleAxisd(best_dyaw, Vec3::UnitZ())) * s0.q_b_n).normalized();
-      sd0.att_rad.z() = std::max(sd0.att_rad.z(), 0.5 * step);
-      sum.initialisation += " (best of " + std::to_string(ao.course_hypotheses) + " body headings: x axis " +
-                            std::to_string(static_cast<int>(std::lround(best_dyaw * kRadToDeg))) +
-                            " deg from the course)";
-    }
-    filter.initialize(s0, sd0);
-    filter.set_input_gyro_bias(gyro_bias_seed);
+    so.given_start = std::make_pair(s, sd);
   }
+  so.start_time_s = cfg.start_time_s;
+  so.end_time_s = cfg.end_time_s < 0 ? 1e300 : cfg.end_time_s;
+  return so;
+}
+
+double initialisation_epoch(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
+                            const KfGinsConfig& cfg, const AlignmentOptions& alignment) {
+  size_t i = first_imu_index(imu, cfg);
+  SessionOptions so = session_options_from(cfg, FilterOptions{}, &alignment);
+  so.alignment.course_hypotheses = 1;  // the trial turns the heading, not the epoch
+  NavFilter filter(so.filter);
+  NavSession session(so, filter, nullptr);
+  size_t g = 0;
+  for (; i < imu.size() && !session.navigating(); ++i) {
+    for (; g < gnss.size() && gnss[g].t_s <= imu[i].t_s + NavSession::kLookahead_s; ++g)
+      session.add_gnss(gnss[g], gnss[g].t_s);
+    session.add_imu(imu[i], 0, imu[i].t_s);
+  }
+  session.finish();
+  if (!session.navigating()) throw InputError(cfg.gnss_path, 0, could_not_align(so));
+  return session.started_at_s();
+}
+
+RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
+                          const KfGinsConfig& cfg, NavFilter& filter, const RunCallbacks& cb,
+                          const AlignmentOptions* alignment, const std::vector<ObservationPtr>* others) {
+  RunSummary sum;
+  size_t i = first_imu_index(imu, cfg);
+  SessionOptions so = session_options_from(cfg, filter.options(), alignment);
   if (filter.options().adapt_imu_noise) {
     const InstalledImuNoise noise = measure_installed_imu_noise(imu, gnss);
-    filter.set_imu_noise_scale(noise.psd_scale(filter.options().arw_rad_per_sqrt_s, filter.options().vrw_mps_per_sqrt_s));
-    sum.imu_noise_scale_start = filter.imu_noise_scale();
+    so.imu_noise_scale_start =
+        noise.psd_scale(filter.options().arw_rad_per_sqrt_s, filter.options().vrw_mps_per_sqrt_s);
   }
-  sum.t_start_s = filter.state().t_s;
-  sum.gyro_bias_seed_rad_s = gyro_bias_seed;
-  // Fixes before the initial epoch are not used.
-  while (g < gnss.size() && gnss[g].t_s <= filter.state().t_s) ++g;
-  const std::vector<ObservationPtr> no_others;
-  const std::vector<ObservationPtr>& other = others ? *others : no_others;
-  size_t o = 0;
-  while (o < other.size() && other[o]->t_s <= filter.state().t_s) ++o;
-
-  const size_t n_total = imu.size();
-  const size_t progress_step = std::max<size_t>(1, n_total / 50);
-  for (; i < imu.size() && imu[i].t_s <= t1; ++i) {
-    // Hand each fix over before the IMU passes its epoch: it is applied exactly there.
-    for (; g < gnss.size() && gnss[g].t_s <= imu[i].t_s + 0.5; ++g) {
-      filter.add_gnss(gnss[g]);
-      ++sum.gnss_fixes;
-    }
-    for (; o < other.size() && other[o]->t_s <= imu[i].t_s + 0.5; ++o) {
-      filter.add_observation(other[o]);
-      ++sum.other_observations;
-    }
-    filter.add_imu(imu[i]);
-    ++sum.imu_samples;
+  NavSession session(so, filter, [&](const NavFilter& f, int) {
     if (cb.on_innovation)
       for (const auto& r : filter.take_innovations()) cb.on_innovation(r);
     else if (filter.innovations().size() > 4096)
       filter.take_innovations();
-    if (cb.on_epoch) cb.on_epoch(filter);
+    if (cb.on_epoch) cb.on_epoch(f);
+  });
+
+  // Each reading is handed over before the IMU passes its epoch (NavSession::kLookahead_s ahead), as a
+  // receiver would deliver it: the filter applies it exactly there. Arrival time = data time.
+  const std::vector<ObservationPtr> no_others;
+  const std::vector<ObservationPtr>& other = others ? *others : no_others;
+  size_t g = 0, o = 0;
+  const double t1 = so.end_time_s;
+  const size_t n_total = imu.size();
+  const size_t progress_step = std::max<size_t>(1, n_total / 50);
+  for (; i < imu.size() && imu[i].t_s <= t1; ++i) {
+    const double t_feed = imu[i].t_s + NavSession::kLookahead_s;
+    for (; g < gnss.size() && gnss[g].t_s <= t_feed; ++g) session.add_gnss(gnss[g], imu[i].t_s);
+    for (; o < other.size() && other[o]->t_s <= t_feed; ++o) session.add_observation(other[o], imu[i].t_s);
+    session.add_imu(imu[i], 0, imu[i].t_s);
     if (cb.on_progress && i % progress_step == 0) cb.on_progress(static_cast<double>(i) / n_total);
   }
+  session.finish();
+  if (!session.navigating()) throw InputError(cfg.gnss_path, 0, could_not_align(so));
+  sum.imu_samples = session.imu_samples_used();
+  sum.gnss_fixes = session.gnss_fixes_used();
+  sum.other_observations = session.other_readings_used();
+  sum.initialisation = session.initialisation();
+  sum.gyro_bias_seed_rad_s = session.gyro_bias_seed_rad_s();
+  sum.imu_noise_scale_start = session.imu_noise_scale_at_start();
+  sum.t_start_s = session.started_at_s();
   sum.t_end_s = filter.state().t_s;
   sum.faults = filter.faults();
   sum.imu_noise_scale_end = filter.imu_noise_scale();

@@ -8,6 +8,7 @@
 #include "common/formats/nav_types.hpp"
 #include "estimator/filter/nav_filter.hpp"
 #include "estimator/ins/alignment.hpp"
+#include "estimator/run/nav_session.hpp"
 
 namespace ldv::est {
 
@@ -21,6 +22,11 @@ namespace ldv::est {
 FilterOptions options_from_kfgins(const KfGinsConfig& cfg);
 // A number from the `ldv:` section, or `fallback` when absent; InputError (file, line, key) on a wrong type.
 double ldv_number(const KfGinsConfig& cfg, const char* key, double fallback);
+
+// The session a configuration describes: the filter options, the alignment (default:
+// alignment_options_from(filter)), a given start (initpos/initvel/initatt, all three), starttime/endtime.
+SessionOptions session_options_from(const KfGinsConfig& cfg, const FilterOptions& filter,
+                                    const AlignmentOptions* alignment = nullptr);
 
 struct RunCallbacks {
   std::function<void(const NavFilter&)> on_epoch;                       // after every IMU sample
@@ -40,12 +46,13 @@ struct RunSummary {
   double imu_noise_scale_start = 1.0, imu_noise_scale_end = 1.0;
 };
 
-// Runs over [start_time, end_time] of the inputs (end < 0: to the end). The initial state is taken from
-// cfg.init_pos/init_vel/init_rpy when all three are given (at the first IMU epoch >= start time), else
-// the data are aligned (alignment.hpp). Feeds each fix before the IMU reaches it, so it is applied at its
-// exact epoch. Throws InputError if alignment never succeeds. `alignment`: settings of the alignment without
-// a given state (default: alignment_options_from(filter.options())). `others`: readings of other sensors
-// (odometer, ...) in time order, fed like the fixes.
+// Runs the files through a NavSession (nav_session.hpp: the same session `ldv nav --lcm-log` and the fusion
+// service drive) over [start_time, end_time] of the inputs (end < 0: to the end): the given state or the
+// alignment, then each reading handed over NavSession::kLookahead_s before the IMU reaches it, so it is
+// applied at its exact epoch. Offline only: the IMU noise as installed is measured over the file's longest
+// standstill first (FilterOptions::adapt_imu_noise). Throws InputError if alignment never succeeds. `alignment`:
+// settings of the alignment without a given state (default: alignment_options_from(filter.options())). `others`:
+// readings of other sensors (odometer, ...) in time order, fed like the fixes.
 RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
                           const KfGinsConfig& cfg, NavFilter& filter, const RunCallbacks& callbacks,
                           const AlignmentOptions* alignment = nullptr,

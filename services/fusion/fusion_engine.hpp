@@ -1,21 +1,20 @@
 #pragma once
 // The fusion service's logic without the bus, so it is tested (and replayed by `ldv nav --lcm-log`)
-// exactly as it runs live. It wraps the estimator's NavFilter (the same code as `ldv nav`):
+// exactly as it runs live. It drives the estimator's NavSession (estimator/run/nav_session.hpp), the same
+// session `ldv nav` runs over files, so every configuration key (given start, start/end time, heading
+// hypotheses, aids) means the same live and offline:
 //  - alignment: IMU samples wait in a queue until a GNSS fix beyond their epoch has arrived (or
-//    align_wait_s of host time passed), so the aligner sees IMU and GNSS in the same order as the
-//    offline run_navigation(), whatever the GNSS latency;
-//  - navigation: late GNSS fixes go to NavFilter::add_gnss, which re-processes its IMU history, so
-//    a fix is applied at its true epoch and the live result equals the offline one;
+//    align_wait_s of host time passed), so the aligner sees IMU and GNSS in the same order as offline,
+//    whatever the GNSS latency;
+//  - navigation: late readings go to the NavFilter, which re-processes its IMU history, so a fix is
+//    applied at its true epoch;
 //  - warm start: after a restart, a recent saved state (attitude, velocity) plus the first GNSS fix
-//    restart navigation at once instead of waiting for a static period. When the vehicle was and is
-//    moving, the heading is carried through the restart gap by the change of the GNSS course over
-//    ground (a land vehicle turns with its velocity), so a restart in the middle of a turn works.
-#include <deque>
-#include <optional>
+//    restart navigation at once instead of waiting for a static period (NavSession::set_warm_start).
+#include <ldv_lcm/wheel_speed_t.hpp>
 #include <vector>
 
 #include "estimator/filter/nav_filter.hpp"
-#include "estimator/ins/alignment.hpp"
+#include "estimator/run/nav_session.hpp"
 #include "services/fusion/warm_start.hpp"
 
 namespace ldv {
@@ -32,45 +31,42 @@ struct FusionOutput {
 
 class FusionEngine {
  public:
-  FusionEngine(const est::FilterOptions& filter_options, const est::AlignmentOptions& alignment_options,
-               double align_wait_s = 1.0);
+  explicit FusionEngine(const est::SessionOptions& session_options);
+  FusionEngine(const FusionEngine&) = delete;  // the session drives this engine's filter
+  FusionEngine& operator=(const FusionEngine&) = delete;
+
+  // Optional: called with the filter itself after every navigated IMU sample, when it happens (a backlog
+  // released at alignment gives many in one call; the FusionOutput vectors hold only the navigation state).
+  void set_epoch_observer(est::NavSession::EpochSink observer) { epoch_observer_ = std::move(observer); }
 
   // Optional: resume from a saved state (used until the first GNSS fix arrives).
-  void set_warm_start(const WarmState& saved) { warm_ = saved; }
+  void set_warm_start(const WarmState& saved) { session_.set_warm_start(saved.state, saved.std); }
 
   // Appends the navigation outputs this sample produced (none while aligning).
   void on_imu(const ImuIncrement& imu, int gps_week, double arrival_s, std::vector<FusionOutput>& out);
-  void on_gnss(const GnssFix& fix, double arrival_s);
+  void on_gnss(const GnssFix& fix, double arrival_s) { session_.add_gnss(fix, arrival_s); }
+  // Another sensor's reading (odometer from wheel_speed_t, ...).
+  void on_observation(est::ObservationPtr reading, double arrival_s, std::vector<FusionOutput>& out);
   // Lets queued samples through when GNSS is silent (call periodically with the host time).
   void on_idle(double now_s, std::vector<FusionOutput>& out);
+  // End of a replayed log: the alignment takes what is queued.
+  void on_end(std::vector<FusionOutput>& out);
 
-  bool navigating() const { return filter_.initialized(); }
+  // The odometer aid is on (FilterOptions::aids): wheel speeds (wheel_speed_t) are fed as odometer readings.
+  bool wants_odometer() const;
+  // A wheel_speed_t the input gate accepted, as an odometer reading (ignored without the odometer aid).
+  void on_wheel_speed(const ldv_lcm::wheel_speed_t& m, double arrival_s, std::vector<FusionOutput>& out);
+
+  bool navigating() const { return session_.navigating(); }
   const est::NavFilter& filter() const { return filter_; }
   est::NavFilter& filter() { return filter_; }
-  const std::string& initialisation() const { return initialisation_; }
+  const std::string& initialisation() const { return session_.initialisation(); }
 
  private:
-  struct QueuedImu {
-    ImuIncrement imu;
-    int week;
-    double arrival_s;
-  };
-  void drain_alignment_queue(double now_s, std::vector<FusionOutput>& out);
-  void start_navigation(const est::NavState& s, const est::NavStd& sd, const std::string& how);
-  bool try_warm_start(const ImuIncrement& imu);
-  void navigate(const ImuIncrement& imu, int week, std::vector<FusionOutput>& out);
-
   est::NavFilter filter_;
-  est::Aligner aligner_;
-  double speed_min_mps_;     // course over ground usable above this (AlignmentOptions)
-  double cog_yaw_std_rad_;   // heading uncertainty from the course over ground
-  double align_wait_s_;
-  std::deque<QueuedImu> imu_queue_;
-  std::deque<GnssFix> gnss_queue_;  // fixes not yet given to the aligner
-  double latest_gnss_t_s_ = -1e300;
-  std::optional<WarmState> warm_;
-  std::optional<GnssFix> warm_fix_;
-  std::string initialisation_;
+  std::vector<FusionOutput>* out_ = nullptr;  // where the session's epochs go during a call
+  est::NavSession::EpochSink epoch_observer_;
+  est::NavSession session_;
 };
 
 }  // namespace ldv

@@ -27,6 +27,9 @@ InputVerdict FusionInputGate::count(InputVerdict v) {
     case InputVerdict::kNotAfterLast:
       ++c_.not_after_last;
       break;
+    case InputVerdict::kNotUsable:
+      ++c_.not_usable;
+      break;
   }
   return v;
 }
@@ -47,11 +50,20 @@ InputVerdict FusionInputGate::check(const ldv_lcm::imu_sample_t& m) {
   return InputVerdict::kAccepted;
 }
 
+bool FusionInputGate::ahead_of_imu(int32_t week, double sow_s) const {
+  return imu_time_.has_accepted() && continuous_s(week, sow_s) > imu_time_.last_accepted_s() + o_.gnss_max_ahead_s;
+}
+
 InputVerdict FusionInputGate::check(const ldv_lcm::gnss_solution_t& m) {
   if (!is_valid(m)) return count(InputVerdict::kNotFinite);
-  if (imu_time_.has_accepted() &&
-      continuous_s(m.gps_week, m.gps_sow_s) > imu_time_.last_accepted_s() + o_.gnss_max_ahead_s)
-    return count(InputVerdict::kTooFarAhead);
+  if (ahead_of_imu(m.gps_week, m.gps_sow_s)) return count(InputVerdict::kTooFarAhead);
+  return InputVerdict::kAccepted;
+}
+
+InputVerdict FusionInputGate::check(const ldv_lcm::wheel_speed_t& m) {
+  if (!is_valid(m)) return count(InputVerdict::kNotFinite);
+  if (!odometer_speed_from_message(m)) return count(InputVerdict::kNotUsable);
+  if (ahead_of_imu(m.gps_week, m.gps_sow_s)) return count(InputVerdict::kTooFarAhead);
   return InputVerdict::kAccepted;
 }
 
@@ -69,6 +81,8 @@ const char* describe(InputVerdict v) {
       return "stamped too far ahead of the stream";
     case InputVerdict::kNotAfterLast:
       return "stamped at or before the last accepted sample";
+    case InputVerdict::kNotUsable:
+      return "wheel speed not valid or a wheel slipping";
   }
   return "?";
 }

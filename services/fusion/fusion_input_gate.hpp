@@ -8,10 +8,13 @@
 //    three samples that confirm it).
 //  - GNSS: finite and plausible (is_valid), and not stamped more than gnss_max_ahead_s after the last
 //    accepted IMU sample (a fix arrives after its epoch, never long before the IMU reaches it).
+//  - wheel speed: finite and plausible (is_valid), speeds flagged valid and no wheel slipping, and like a fix
+//    not stamped more than gnss_max_ahead_s after the last accepted IMU sample.
 // Every refusal is counted by reason.
 #include <cstdint>
 #include <ldv_lcm/gnss_solution_t.hpp>
 #include <ldv_lcm/imu_sample_t.hpp>
+#include <ldv_lcm/wheel_speed_t.hpp>
 
 #include "services/runtime/message_time_gate.hpp"
 
@@ -30,10 +33,11 @@ enum class InputVerdict {
   kDeviceError,   // IMU status bit 1
   kTooFarAhead,   // stamped ahead of the stream's time (a bad stamp)
   kNotAfterLast,  // IMU stamped at or before the last accepted sample
+  kNotUsable,     // wheel speed: not flagged valid, or a wheel flagged locked or slipping (expected, not malformed)
 };
 
 struct FusionInputCounters {
-  int64_t not_finite = 0, not_gps_time = 0, device_error = 0, too_far_ahead = 0, not_after_last = 0;
+  int64_t not_finite = 0, not_gps_time = 0, device_error = 0, too_far_ahead = 0, not_after_last = 0, not_usable = 0;
   // Refused as bad input (the heartbeat's malformed count); host-clock samples are expected, not bad.
   int64_t malformed() const { return not_finite + device_error + too_far_ahead + not_after_last; }
 };
@@ -44,10 +48,12 @@ class FusionInputGate {
 
   InputVerdict check(const ldv_lcm::imu_sample_t& m);
   InputVerdict check(const ldv_lcm::gnss_solution_t& m);
+  InputVerdict check(const ldv_lcm::wheel_speed_t& m);
   const FusionInputCounters& counters() const { return c_; }
 
  private:
   InputVerdict count(InputVerdict v);
+  bool ahead_of_imu(int32_t week, double sow_s) const;
 
   FusionInputOptions o_;
   MessageTimeGate imu_time_;

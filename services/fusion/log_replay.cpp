@@ -6,6 +6,9 @@
 #include "services/fusion/fusion_input_gate.hpp"
 
 namespace ldv {
+namespace {
+const std::string kWheelSpeedChannel = "WHEEL_SPEED";
+}  // namespace
 
 LogReplaySummary replay_fusion_log(const std::string& log_path, FusionEngine& engine,
                                    const std::function<void(const FusionOutput&)>& on_output,
@@ -13,14 +16,12 @@ LogReplaySummary replay_fusion_log(const std::string& log_path, FusionEngine& en
   LcmLogReader log(log_path);
   LogReplaySummary sum;
   std::vector<FusionOutput> outs;
-  double last_arrival_s = 0;
   FusionInputOptions gate_options;  // the live service's defaults
   gate_options.host_clock_imu = host_clock_imu;
   FusionInputGate gate(gate_options);
   LcmLogEvent ev;
   while (log.next(ev)) {
     const double arrival_s = ev.timestamp_us * 1e-6;  // logger receive time [us] -> s
-    last_arrival_s = arrival_s;
     if (ev.channel == imu_channel) {
       ldv_lcm::imu_sample_t m;
       if (m.decode(ev.data.data(), 0, static_cast<int>(ev.data.size())) < 0) {
@@ -43,6 +44,17 @@ LogReplaySummary replay_fusion_log(const std::string& log_path, FusionEngine& en
       }
       ++sum.gnss_messages;
       engine.on_gnss(gnss_from_message(m), arrival_s);
+    } else if (ev.channel == kWheelSpeedChannel && engine.wants_odometer()) {
+      ldv_lcm::wheel_speed_t m;
+      const bool decoded = m.decode(ev.data.data(), 0, static_cast<int>(ev.data.size())) >= 0;
+      const InputVerdict v = decoded ? gate.check(m) : InputVerdict::kNotFinite;
+      if (v == InputVerdict::kNotUsable) continue;  // flagged by the sensor itself: expected, not malformed
+      if (v != InputVerdict::kAccepted) {
+        ++sum.malformed;
+        continue;
+      }
+      ++sum.wheel_messages;
+      engine.on_wheel_speed(m, arrival_s, outs);
     } else {
       ++sum.other_messages;
       engine.on_idle(arrival_s, outs);
@@ -51,7 +63,7 @@ LogReplaySummary replay_fusion_log(const std::string& log_path, FusionEngine& en
     outs.clear();
   }
   sum.corrupt_log_events = log.corrupt_events() + log.truncated_events();
-  engine.on_idle(last_arrival_s + 1e6, outs);
+  engine.on_end(outs);
   for (const auto& o : outs) on_output(o);
   sum.initialisation = engine.initialisation();
   return sum;

@@ -1,19 +1,16 @@
-// fusion: the estimator as a service. Subscribes IMU and GNSS_SOLUTION, runs FusionEngine (the
-// estimator library `ldv nav` uses), publishes NAV at the IMU rate, NAV_INNOVATION at the GNSS rate
-// and its heartbeat; saves a warm-start state once a second.
-#include <chrono>
-#include <thread>
-
+// fusion: the estimator as a service. Subscribes IMU and GNSS_SOLUTION (and WHEEL_SPEED with the odometer
+// aid), runs FusionEngine (the estimator's NavSession, as `ldv nav` does), publishes NAV at the IMU rate,
+// NAV_INNOVATION at the GNSS rate and its heartbeat; saves a warm-start state once a second.
 #include <CLI/CLI.hpp>
-
+#include <chrono>
 #include <ldv_lcm/nav_innovation_t.hpp>
 #include <ldv_lcm/nav_state_t.hpp>
+#include <thread>
 
 #include "common/bus/message_conversions.hpp"
 #include "common/config/config_section.hpp"
 #include "common/formats/kfgins_config.hpp"
 #include "common/logging.hpp"
-#include "estimator/run/alignment_options_from.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "services/fusion/fusion_engine.hpp"
 #include "services/fusion/fusion_input_gate.hpp"
@@ -70,8 +67,11 @@ int main(int argc, char** argv) {
     const ldv::KfGinsConfig kcfg = ldv::load_kfgins_config(cfg.kfgins_config);
     ldv::est::FilterOptions fo = ldv::est::options_from_kfgins(kcfg);
     fo.history_s = cfg.history_s;
-    const ldv::est::AlignmentOptions ao = ldv::est::alignment_options_from(fo);
-    ldv::FusionEngine engine(fo, ao, cfg.align_wait_s);
+    // The session the KF-GINS configuration describes, as `ldv nav` runs it (given start, start/end time,
+    // heading hypotheses, aids), with this service's alignment wait.
+    ldv::est::SessionOptions so = ldv::est::session_options_from(kcfg, fo);
+    so.align_wait_s = cfg.align_wait_s;
+    ldv::FusionEngine engine(so);
     if (!cfg.state_file.empty()) {
       if (auto w = ldv::load_warm_state(cfg.state_file, ldv::host_time_s(), cfg.warm_start_max_age_s)) {
         engine.set_warm_start(*w);
@@ -81,7 +81,7 @@ int main(int argc, char** argv) {
     }
 
     ldv::ServiceRuntime rt("fusion", cfg.bus_url);
-    ldv::SequenceTracker imu_seq, gnss_seq;
+    ldv::SequenceTracker imu_seq, gnss_seq, wheel_seq;
     int64_t nav_seq = 0, innovation_seq = 0;
     double last_innovation_t = -1e300, next_save_s = 0;
     int last_week = 0;
@@ -138,6 +138,19 @@ int main(int argc, char** argv) {
       if (refused(gate.check(m), "GNSS_SOLUTION", m.gps_week, m.gps_sow_s)) return;
       engine.on_gnss(ldv::gnss_from_message(m), ldv::host_time_s());
     }, 1000);
+    if (engine.wants_odometer())
+      rt.bus().subscribe<ldv_lcm::wheel_speed_t>(
+          "WHEEL_SPEED",
+          [&](const ldv_lcm::wheel_speed_t& m, const std::string&) {
+            ++rt.counters().received;
+            rt.counters().dropped += wheel_seq.observe(m.seq);
+            const ldv::InputVerdict v = gate.check(m);
+            if (v == ldv::InputVerdict::kNotUsable) return;  // a slipping wheel: expected, not bad input
+            if (refused(v, "WHEEL_SPEED", m.gps_week, m.gps_sow_s)) return;
+            engine.on_wheel_speed(m, ldv::host_time_s(), outputs);
+            publish(outputs);
+          },
+          1000);
 
     rt.ready();
     while (rt.running()) {

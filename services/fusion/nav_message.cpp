@@ -26,14 +26,22 @@ ldv_lcm::nav_state_t nav_message(const FusionOutput& o, int64_t seq) {
   return m;
 }
 
+namespace {
+// The codes of nav_innovation_t.sensor: index + 1; 0 for a sensor that has none yet.
+constexpr est::SensorName kSensorCodes[] = {est::sensors::kGnssPosition, est::sensors::kGnssVelocity,
+                                            est::sensors::kZeroVelocity, est::sensors::kZeroAngularRate,
+                                            est::sensors::kNonHolonomic, est::sensors::kOdometer};
+}  // namespace
+
 int8_t sensor_code(est::SensorName sensor) {
-  // The codes of nav_innovation_t.sensor; 0 for a sensor that has none yet.
-  constexpr est::SensorName kCodes[] = {est::sensors::kGnssPosition, est::sensors::kGnssVelocity,
-                                        est::sensors::kZeroVelocity, est::sensors::kZeroAngularRate,
-                                        est::sensors::kNonHolonomic, est::sensors::kOdometer};
-  for (size_t i = 0; i < std::size(kCodes); ++i)
-    if (kCodes[i] == sensor) return static_cast<int8_t>(i + 1);
+  for (size_t i = 0; i < std::size(kSensorCodes); ++i)
+    if (kSensorCodes[i] == sensor) return static_cast<int8_t>(i + 1);
   return 0;
+}
+
+std::string sensor_of_code(int8_t code) {
+  if (code >= 1 && code <= static_cast<int>(std::size(kSensorCodes))) return std::string(kSensorCodes[code - 1]);
+  return "sensor " + std::to_string(code);
 }
 
 ldv_lcm::nav_innovation_t innovation_message(const est::InnovationRecord& r, int gps_week, int64_t seq) {

@@ -6,17 +6,23 @@
 //  - the replayed NAV equals the live NAV epoch for epoch: fusion's output depends only on its inputs and
 //    their order (late fixes rewind the filter, so a NAV is the state given the fixes that had arrived; the
 //    log keeps the arrival order and lcm-logplayer keeps the log's order), not on their timing;
-//  - a remote subscriber on the TSPI group receives the replayed TSPI, each equal to the replayed NAV at its epoch.
+//  - a remote subscriber on the TSPI group receives the replayed TSPI, each equal to the replayed NAV at its epoch;
+//  - `ldv nav --lcm-log` of the live log with the same configuration writes the live NAV, epoch for epoch (one
+//    navigation session, estimator/run/nav_session.hpp, drives the filter live and offline).
+// fusion runs with the non-holonomic constraint on (`ldv: {aids: [nhc]}`): a live run with an aid.
 // The channel expression is grouped: LCM anchors it as ^(...)$; `IMU|GNSS_SOLUTION|GNSS_PPS` would anchor only
 // its ends (^IMU matches IMU_PPS and IMU_TIMING too).
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <ldv_lcm/nav_innovation_t.hpp>
 #include <map>
 
+#include "common/formats/kfgins_files.hpp"
 #include "common/geo/earth_model.hpp"
 #include "sim/simulator.hpp"
 #include "tests/integration/vehicle_rig.hpp"
@@ -67,7 +73,7 @@ bool contiguous(const std::vector<ldv_lcm::nav_state_t>& v) {
 
 TEST(
     LogplayerReplay,
-    GivenALiveRunsLog_WhenLcmLogplayerReplaysItsInputsIntoAFreshFusion_ThenNavEqualsTheLiveNavAndTspiReachesARemoteSubscriber) {
+    GivenALiveRunWithNhcsLog_WhenReplayedByLcmLogplayerAndByLdvNav_ThenBothEqualTheLiveNavAndTspiReachesARemoteSubscriber) {
   const fs::path dir = fs::temp_directory_path() / ("ldv_logplayer_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir / "sim");
@@ -108,8 +114,14 @@ TEST(
   std::ofstream(dir / "gnss_link.yaml") << "bus_url: \"" << kBusUrl
                                         << "\"\ninput: {type: serial, serial: {device: " << gnss_tty
                                         << ", baud: 115200}}\nprotocol: nmea\ngps_minus_utc_s: 18\n";
-  std::ofstream(dir / "fusion.yaml") << "bus_url: \"" << kBusUrl
-                                     << "\"\nkfgins_config: " << (dir / "sim" / "kfgins.yaml").string()
+  // The simulator's configuration with the non-holonomic constraint on (the simulated car does not slip).
+  const std::string kfgins_nhc = (dir / "kfgins_nhc.yaml").string();
+  {
+    YAML::Node k = YAML::LoadFile((dir / "sim" / "kfgins.yaml").string());
+    k["ldv"]["aids"].push_back("nhc");
+    std::ofstream(kfgins_nhc) << k << "\n";
+  }
+  std::ofstream(dir / "fusion.yaml") << "bus_url: \"" << kBusUrl << "\"\nkfgins_config: " << kfgins_nhc
                                      << "\nhistory_s: 3.0\n";
   std::ofstream(dir / "tspi_pub.yaml") << "bus_url: \"" << kBusUrl
                                        << "\"\ntspi: {rate_hz: 20, group: 239.255.77.1, port: 7668, ttl: 1}\n";
@@ -219,6 +231,47 @@ TEST(
   EXPECT_LE(max_rpy_deg, 1e-12);
   EXPECT_EQ(max_std, 0.0);
   EXPECT_EQ(status_differs, 0);
+
+  // And NAV_INNOVATION carried the aid's updates live
+  long nhc_innovations = 0;
+  for (const auto& m : read_channel<ldv_lcm::nav_innovation_t>(live_log, "NAV_INNOVATION"))
+    nhc_innovations += m.sensor == 5;
+  EXPECT_GT(nhc_innovations, 100) << "NHC updates (sensor 5) published live";
+
+  // And `ldv nav --lcm-log` of the live log, with fusion's configuration, writes the live NAV epoch for epoch
+  const std::string offline_nav = (dir / "offline.nav").string();
+  {
+    auto nav = test::start_logged(kBin + "/ldv",
+                                  {"nav", "--lcm-log", live_log, "--kfgins-config", kfgins_nhc, "--out", offline_nav},
+                                  (dir / "ldv_nav.log").string());
+    ASSERT_EQ(nav->wait_exit(120.0), 0) << "ldv nav --lcm-log (see " << dir << "/ldv_nav.log)";
+  }
+  const std::vector<NavRecord> offline = read_nav(offline_nav);
+  ASSERT_EQ(offline.size(), live_nav.size());
+  double off_pos_m = 0, off_vel_mps = 0, off_rpy_deg = 0, off_sow_s = 0;
+  long off_missing = 0;
+  for (size_t k = 0; k < live_nav.size(); ++k) {  // epoch for epoch, in order
+    const auto& a = live_nav[k];
+    const NavRecord& b = offline[k];
+    off_sow_s = std::max(off_sow_s, std::abs(a.gps_sow_s - b.sow_s));
+    off_missing += a.gps_week != b.week;
+    off_pos_m = std::max(off_pos_m, earth::ned_between(position_of(a), b.pos).norm());
+    for (int i = 0; i < 3; ++i) {
+      off_vel_mps = std::max(off_vel_mps, std::abs(a.vel_ned_mps[i] - b.vel_n_mps[i]));
+      off_rpy_deg = std::max(off_rpy_deg, std::abs(std::remainder(a.rpy_deg[i] - b.rpy_rad[i] * kRadToDeg, 360.0)));
+    }
+  }
+  std::printf(
+      "ldv nav --lcm-log: %zu epochs, %ld with another week; max difference to the live NAV: time %.3g s, "
+      "position %.3g m, velocity %.3g m/s, attitude %.3g deg\n",
+      offline.size(), off_missing, off_sow_s, off_pos_m, off_vel_mps, off_rpy_deg);
+  EXPECT_EQ(off_missing, 0);
+  // Equal within what the .nav prints: 1e-6 s, 1e-11 deg of latitude and longitude, 1e-5 m of height, 1e-6 m/s, 1e-8
+  // deg.
+  EXPECT_LE(off_sow_s, 1e-6);
+  EXPECT_LE(off_pos_m, 2e-5);
+  EXPECT_LE(off_vel_mps, 1e-6);
+  EXPECT_LE(off_rpy_deg, 1e-7);
 
   // And the remote TSPI subscriber received the replay's TSPI, each the replayed NAV of its epoch
   ASSERT_GT(remote_tspi.size(), 20u * 20u) << "TSPI at 20 Hz for at least 20 s of driving";

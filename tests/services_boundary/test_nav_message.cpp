@@ -20,7 +20,9 @@ TEST(NavMessage, GivenAFixDisplacedFromTheFilter_ThenThePublishedInnovationIsPre
   // Given fusion navigating a vehicle at rest, level, facing north, antenna at the IMU (no lever arm)
   est::FilterOptions fo;
   fo.zupt.enabled = false;  // only the GNSS update under test
-  FusionEngine engine(fo, est::alignment_options_from(fo));
+  est::SessionOptions so;
+  so.filter = fo;
+  FusionEngine engine(so);
   const Geodetic r{45.0 * kDegToRad, 7.0 * kDegToRad, 300.0};
   const double t0 = 100000.0, dt = 0.01;
   est::NavState s;

@@ -3,7 +3,8 @@
 //   ldv nav --imu imu.txt --gnss gnss.txt [--lever x y z] ...
 //   ldv nav --imu-csv imu.csv [--imu-tag imu.csv.tag] --pos rtk.pos [--pos-height-offset N] ...   (the walk;
 //            or a config whose imupath ends in .csv and gnsspath in .pos: tests/estimator/data/walk_0827_mems.yaml)
-//   ldv nav --lcm-log FILE.lcm --kfgins-config FILE.yaml   (replays the live fusion service's engine)
+//   ldv nav --lcm-log FILE.lcm --kfgins-config FILE.yaml   (replays the live fusion service's engine: the same
+//            NavSession as over files, estimator/run/nav_session.hpp)
 // Inputs: IMU from KF-GINS imu.txt (--imu or the config) or a time-tagged CSV (--imu-csv); GNSS from KF-GINS
 // gnss.txt (--gnss or the config) or an RTKLIB .pos (--pos); or both from an LCM log (--lcm-log). IMU files are
 // corrected by an `ldv calib static` calibration (--calibration or ldv.calibration; toolbox/assess/nav_inputs.hpp).
@@ -218,22 +219,27 @@ std::unique_ptr<est::NavFilter> check_model(const NavArgs& a, const est::FilterO
 void run_lcm_log(const NavArgs& a, const KfGinsConfig& cfg, est::FilterOptions opt, const est::AlignmentOptions& ao) {
   const auto t_begin = std::chrono::steady_clock::now();
   opt.history_s = a.history_s;  // as the live service: late fixes re-process the IMU history
-  FusionEngine engine(opt, ao, a.align_wait_s);
+  est::SessionOptions so = est::session_options_from(cfg, opt, &ao);
+  so.align_wait_s = a.align_wait_s;
+  FusionEngine engine(so);
   const std::string nav_path = default_nav_path(a, cfg);
   std::unique_ptr<NavOutputs> out;
   long n = 0;
   double t0 = 0, t1 = 0;
-  const LogReplaySummary sum = replay_fusion_log(a.lcm_log, engine, [&](const FusionOutput& o) {
-    est::NavFilter& f = engine.filter();
+  // Each epoch written when the session navigates it (with the filter of that moment: the backlog released at
+  // the alignment is many epochs in one call).
+  engine.set_epoch_observer([&](const est::NavFilter& f, int gps_week) {
     if (!out) {
       out = std::make_unique<NavOutputs>(nav_path, f, a.std_rate_hz);
-      t0 = o.state.t_s;
+      t0 = f.state().t_s;
     }
-    for (const auto& r : f.take_innovations()) out->innovation(r);
-    out->epoch(f, a.week >= 0 ? a.week : o.gps_week);
-    t1 = o.state.t_s;
+    for (const auto& r : engine.filter().take_innovations()) out->innovation(r);
+    out->epoch(f, a.week >= 0 ? a.week : gps_week);
+    t1 = f.state().t_s;
     ++n;
-  }, "IMU", "GNSS_SOLUTION", a.host_clock_imu);
+  });
+  const LogReplaySummary sum = replay_fusion_log(
+      a.lcm_log, engine, [](const FusionOutput&) {}, "IMU", "GNSS_SOLUTION", a.host_clock_imu);
   if (!out) throw InputError(a.lcm_log, 0, "no navigation output: the log never allowed an alignment (" +
                                                std::to_string(sum.imu_messages) + " IMU and " +
                                                std::to_string(sum.gnss_messages) + " GNSS messages)");
@@ -241,8 +247,12 @@ void run_lcm_log(const NavArgs& a, const KfGinsConfig& cfg, est::FilterOptions o
   out.reset();
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
   if (!a.quiet) {
-    std::fprintf(stderr, "ldv nav: LCM log: %ld IMU, %ld GNSS, %ld malformed, %ld other messages, %ld corrupt log events\n",
-                 sum.imu_messages, sum.gnss_messages, sum.malformed, sum.other_messages, sum.corrupt_log_events);
+    std::fprintf(
+        stderr,
+        "ldv nav: LCM log: %ld IMU, %ld GNSS, %ld wheel speed, %ld malformed, %ld other messages, %ld corrupt log "
+        "events\n",
+        sum.imu_messages, sum.gnss_messages, sum.wheel_messages, sum.malformed, sum.other_messages,
+        sum.corrupt_log_events);
     print_summary("replayed through FusionEngine", n, t0, t1, sum.gnss_messages, sum.initialisation, engine.filter(),
                   elapsed, nav_path);
   }
@@ -316,7 +326,10 @@ void add_nav_command(CLI::App& app) {
   auto args = std::make_shared<NavArgs>();
   CLI::App* c = app.add_subcommand("nav", "GPS/INS error-state EKF over KF-GINS files (writes a KF-GINS .nav)");
   cli::add_nav_input_options(c, args->in);
-  c->add_option("--lcm-log", args->lcm_log, "replay an LCM log (IMU + GNSS_SOLUTION) through the fusion service's engine");
+  c->add_option(
+      "--lcm-log", args->lcm_log,
+      "replay an LCM log (IMU + GNSS_SOLUTION, and WHEEL_SPEED with --aid odometer) through the fusion service's "
+      "navigation session");
   c->add_option("--history", args->history_s, "with --lcm-log: how late a GNSS fix may arrive [s] (as the live service)");
   c->add_flag("--host-clock-imu", args->host_clock_imu,
               "with --lcm-log: also use IMU samples stamped from the host clock (status bit 0), as fusion's "

@@ -4,10 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <map>
-#include <sstream>
-#include <thread>
-
 #include <ldv_lcm/gnss_solution_t.hpp>
 #include <ldv_lcm/imu_sample_t.hpp>
 #include <ldv_lcm/imu_timing_t.hpp>
@@ -16,8 +12,14 @@
 #include <ldv_lcm/pps_event_t.hpp>
 #include <ldv_lcm/service_status_t.hpp>
 #include <ldv_lcm/tspi_v1_t.hpp>
+#include <ldv_lcm/wheel_speed_t.hpp>
+#include <map>
+#include <sstream>
+#include <thread>
 
 #include "common/bus/bus.hpp"
+#include "common/bus/message_conversions.hpp"
+#include "services/fusion/nav_message.hpp"
 #include "tools/ldv/command_registry.hpp"
 
 namespace ldv::cli {
@@ -104,8 +106,15 @@ bool describe(const uint8_t* data, int size, std::string& type, std::string& tex
     ldv_lcm::nav_innovation_t m;
     type = "nav_innovation_t";
     if (!decode(m)) return true;
-    text = "sow " + fixed(m.gps_sow_s, 3) + " sensor " + std::to_string(m.sensor) + " nis " + fixed(m.nis, 2) +
-           (m.accepted ? " accepted" : " REJECTED");
+    text = "sow " + fixed(m.gps_sow_s, 3) + " " + sensor_of_code(m.sensor) + " (" + std::to_string(m.dim) +
+           " rows) nis " + fixed(m.nis, 2) + (m.accepted ? " accepted" : " REJECTED");
+  } else if (fp == ldv_lcm::wheel_speed_t::getHash()) {
+    ldv_lcm::wheel_speed_t m;
+    type = "wheel_speed_t";
+    if (!decode(m)) return true;
+    const auto v = odometer_speed_from_message(m);
+    text = "sow " + fixed(m.gps_sow_s, 3) + " " + std::to_string(m.num_wheels) + " wheel(s) odometer " +
+           (v ? fixed(*v, 3) + " m/s" : std::string("unusable")) + " status " + std::to_string(m.status);
   } else if (fp == ldv_lcm::pps_event_t::getHash()) {
     ldv_lcm::pps_event_t m;
     type = "pps_event_t";

@@ -1,0 +1,304 @@
+#include "estimator/run/nav_session.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <type_traits>
+
+#include "common/geo/earth_model.hpp"
+#include "estimator/update/sensor_names.hpp"
+
+namespace ldv::est {
+namespace {
+
+std::string fixed_text(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.1f", v);
+  return b;
+}
+
+template <typename Queue, typename T>
+void insert_in_time_order(Queue& q, T item, double t_s) {
+  // Readings arrive in time order from a receiver; a replayed or merged stream may not.
+  auto it = std::upper_bound(q.begin(), q.end(), t_s, [](double t, const auto& x) {
+    if constexpr (std::is_same_v<std::decay_t<decltype(x)>, GnssFix>)
+      return t < x.t_s;
+    else
+      return t < x->t_s;
+  });
+  q.insert(it, std::move(item));
+}
+
+}  // namespace
+
+NavSession::NavSession(SessionOptions options, NavFilter& filter, EpochSink on_epoch)
+    : o_(std::move(options)), on_epoch_(std::move(on_epoch)), filter_(filter), aligner_(o_.alignment) {
+  if (o_.alignment.speed_min_mps > kSlowCourseSpeed_mps) {
+    AlignmentOptions slow = o_.alignment;
+    slow.speed_min_mps = kSlowCourseSpeed_mps;
+    slow_aligner_.emplace(slow);
+  }
+}
+
+void NavSession::set_warm_start(const NavState& saved, const NavStd& saved_std) {
+  warm_ = std::make_pair(saved, saved_std);
+}
+
+void NavSession::add_imu(const ImuIncrement& imu, int week, double arrival_s) {
+  latest_imu_seen_t_s_ = std::max(latest_imu_seen_t_s_, imu.t_s);
+  latest_imu_arrival_s_ = arrival_s;
+  if (imu.t_s < o_.start_time_s || imu.t_s > o_.end_time_s) {
+    if (!navigating()) drain_alignment_queue(arrival_s, false);
+    return;
+  }
+  if (navigating()) {
+    navigate(imu, week);
+    return;
+  }
+  if (o_.given_start && imu.t_s - o_.start_time_s > o_.given_start_max_gap_s) {
+    char b[160];
+    std::snprintf(b, sizeof b, "the given state holds at %.3f s, the data start at %.3f s: aligned instead; ",
+                  o_.start_time_s, imu.t_s);
+    given_note_ = b;
+    o_.given_start.reset();
+  }
+  if (o_.given_start) {
+    NavState s = o_.given_start->first;
+    // The given state holds at the start of the first increment (KF-GINS: at starttime).
+    s.t_s = std::max(o_.start_time_s, imu.t_s - imu.dt_s);
+    start(s, o_.given_start->second, "given", std::nullopt);
+    navigate(imu, week);
+    return;
+  }
+  if (warm_ && try_warm_start(imu)) {
+    navigate(imu, week);
+    return;
+  }
+  imu_queue_.push_back({imu, week, arrival_s});
+  drain_alignment_queue(arrival_s, false);
+}
+
+void NavSession::add_gnss(const GnssFix& fix, double arrival_s) {
+  if (navigating()) {
+    if (fix.t_s <= started_at_s_) return;  // before the initial epoch: not used, however late it arrives
+    insert_in_time_order(gnss_queue_, fix, fix.t_s);
+    hand_over_readings(filter_.state().t_s + kLookahead_s);
+    return;
+  }
+  if (warm_ && !warm_fix_) warm_fix_ = fix;
+  insert_in_time_order(gnss_queue_, fix, fix.t_s);
+  latest_gnss_t_s_ = std::max(latest_gnss_t_s_, fix.t_s);
+  (void)arrival_s;  // the queue waits on the IMU's arrival (drain_alignment_queue)
+}
+
+void NavSession::add_observation(ObservationPtr reading, double arrival_s) {
+  (void)arrival_s;
+  if (!reading) return;
+  const double t = reading->t_s;
+  if (navigating() && t <= started_at_s_) return;
+  insert_in_time_order(other_queue_, std::move(reading), t);
+  if (navigating()) hand_over_readings(filter_.state().t_s + kLookahead_s);
+}
+
+void NavSession::idle(double now_s) {
+  if (!navigating()) drain_alignment_queue(now_s, false);
+}
+
+void NavSession::finish() {
+  if (!navigating()) drain_alignment_queue(1e300, true);
+}
+
+void NavSession::hand_over_readings(double up_to_s) {
+  for (; !gnss_queue_.empty() && gnss_queue_.front().t_s <= up_to_s; gnss_queue_.pop_front()) {
+    filter_.add_gnss(gnss_queue_.front());
+    ++gnss_used_;
+  }
+  for (; !other_queue_.empty() && other_queue_.front()->t_s <= up_to_s; other_queue_.pop_front()) {
+    filter_.add_observation(other_queue_.front());
+    ++others_used_;
+  }
+}
+
+void NavSession::navigate(const ImuIncrement& imu, int week) {
+  hand_over_readings(imu.t_s + kLookahead_s);
+  filter_.add_imu(imu);
+  ++imu_used_;
+  if (on_epoch_) on_epoch_(filter_, week);
+}
+
+void NavSession::drain_alignment_queue(double now_s, bool at_end) {
+  while (!navigating()) {
+    if (trial_) {
+      if (!heading_trial_ready(now_s, at_end)) return;
+      run_heading_trial();
+      break;
+    }
+    if (imu_queue_.empty()) break;
+    const QueuedImu head = imu_queue_.front();
+    // The offline order: an IMU sample, then every fix up to its epoch. Wait until a fix beyond this
+    // epoch has arrived, so none that belongs before it is still in flight.
+    const bool gnss_beyond = latest_gnss_t_s_ > head.imu.t_s;
+    if (!at_end && !gnss_beyond && now_s - head.arrival_s < o_.align_wait_s) return;
+    imu_queue_.pop_front();
+    const bool slow_running = slow_aligner_ && !slow_result_;
+    aligner_.add_imu(head.imu);
+    if (slow_running) slow_aligner_->add_imu(head.imu);
+    for (; !gnss_queue_.empty() && gnss_queue_.front().t_s <= head.imu.t_s; gnss_queue_.pop_front()) {
+      aligner_.add_gnss(gnss_queue_.front());
+      if (slow_running) slow_aligner_->add_gnss(gnss_queue_.front());
+      if (slow_result_) slow_replay_gnss_.push_back(gnss_queue_.front());
+    }
+    if (slow_result_) slow_replay_imu_.push_back(head);
+    if (aligner_.aligned()) {
+      slow_aligner_.reset();
+      slow_result_.reset();
+      slow_replay_imu_.clear();
+      slow_replay_gnss_.clear();
+      aligned({aligner_.state(), aligner_.std(), aligner_.method(), aligner_.gyro_bias_seed().value_or(Vec3::Zero())});
+      continue;
+    }
+    if (slow_running && slow_aligner_->aligned())
+      slow_result_ =
+          Alignment{slow_aligner_->state(), slow_aligner_->std(),
+                    slow_aligner_->method() + " (the GNSS never reached " + fixed_text(o_.alignment.speed_min_mps) +
+                        " m/s: course from " + fixed_text(kSlowCourseSpeed_mps) + " m/s)",
+                    slow_aligner_->gyro_bias_seed().value_or(Vec3::Zero())};
+    if (slow_result_ && head.imu.t_s - slow_result_->state.t_s > o_.slow_course_grace_s) take_slow_course_alignment();
+  }
+  if (at_end && !navigating() && slow_result_) take_slow_course_alignment();
+  if (at_end && !navigating() && trial_) run_heading_trial();
+  if (navigating()) release_backlog();
+}
+
+void NavSession::take_slow_course_alignment() {
+  Alignment al = *slow_result_;
+  slow_result_.reset();
+  slow_aligner_.reset();
+  // The samples and fixes the configured-speed aligner took since go back to the front of the queues.
+  for (auto it = slow_replay_imu_.rbegin(); it != slow_replay_imu_.rend(); ++it) imu_queue_.push_front(*it);
+  gnss_queue_.insert(gnss_queue_.begin(), slow_replay_gnss_.begin(), slow_replay_gnss_.end());
+  slow_replay_imu_.clear();
+  slow_replay_gnss_.clear();
+  aligned(std::move(al));
+}
+
+void NavSession::aligned(Alignment al) {
+  const Vec3& seed = al.gyro_bias_seed;
+  if (!seed.isZero()) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "; gyro turn-on bias from the static start [%.4f %.4f %.4f] deg/s taken out",
+                  seed.x() * kRadToDeg, seed.y() * kRadToDeg, seed.z() * kRadToDeg);
+    al.method += buf;
+  }
+  if (o_.alignment.course_hypotheses > 1 && al.method.find("course") != std::string::npos) {
+    trial_ = std::move(al);  // unknown mounting: wait for course_trial_s of data to try the body headings on
+    return;
+  }
+  start(al.state, al.std, al.method, al.gyro_bias_seed);
+}
+
+bool NavSession::heading_trial_ready(double now_s, bool at_end) const {
+  if (at_end) return true;
+  // Every IMU sample of the trial window is in once a later one came; every fix it uses (up to kLookahead_s
+  // beyond its last sample) once a fix beyond that came, or the wait for GNSS is over.
+  const double t_window_end = std::min(o_.end_time_s, trial_->state.t_s + o_.alignment.course_trial_s);
+  if (latest_imu_seen_t_s_ <= t_window_end) return false;
+  return latest_gnss_t_s_ > t_window_end + kLookahead_s || now_s - latest_imu_arrival_s_ >= o_.align_wait_s;
+}
+
+void NavSession::run_heading_trial() {
+  Alignment al = std::move(*trial_);
+  trial_.reset();
+  // Unknown mounting: which body heading matches the GNSS track over the next course_trial_s?
+  const int n = o_.alignment.course_hypotheses;
+  const double step = 2.0 * kPi / n;
+  const double t_window_end = std::min(o_.end_time_s, al.state.t_s + o_.alignment.course_trial_s);
+  double best_cost = 1e300, best_dyaw = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const double dyaw = k * step;
+    NavFilter trial(filter_.options());
+    NavState s = al.state;
+    s.q_b_n = (Quat(Eigen::AngleAxisd(dyaw, Vec3::UnitZ())) * al.state.q_b_n).normalized();
+    NavStd sd = al.std;
+    sd.att_rad.z() = std::max(al.std.att_rad.z(), 0.5 * step);
+    trial.initialize(s, sd);
+    trial.set_input_gyro_bias(al.gyro_bias_seed);
+    auto fix = std::upper_bound(gnss_queue_.begin(), gnss_queue_.end(), s.t_s,
+                                [](double t, const GnssFix& g) { return t < g.t_s; });
+    double cost = 0.0;
+    for (const QueuedImu& q : imu_queue_) {
+      if (q.imu.t_s > t_window_end) break;
+      for (; fix != gnss_queue_.end() && fix->t_s <= q.imu.t_s + kLookahead_s; ++fix) trial.add_gnss(*fix);
+      trial.add_imu(q.imu);
+      for (const auto& r : trial.take_innovations())
+        if (r.sensor == sensors::kGnssPosition) cost += std::min(r.nis, 1e6);
+    }
+    if (cost < best_cost) {
+      best_cost = cost;
+      best_dyaw = dyaw;
+    }
+  }
+  al.state.q_b_n = (Quat(Eigen::AngleAxisd(best_dyaw, Vec3::UnitZ())) * al.state.q_b_n).normalized();
+  al.std.att_rad.z() = std::max(al.std.att_rad.z(), 0.5 * step);
+  al.method += " (best of " + std::to_string(n) + " body headings: x axis " +
+               std::to_string(static_cast<int>(std::lround(best_dyaw * kRadToDeg))) + " deg from the course)";
+  start(al.state, al.std, al.method, al.gyro_bias_seed);
+}
+
+bool NavSession::try_warm_start(const ImuIncrement& imu) {
+  if (!warm_fix_) return false;
+  const GnssFix fix = *warm_fix_;
+  const auto [saved, saved_std] = *warm_;
+  warm_.reset();
+  if (imu.t_s < fix.t_s || imu.t_s - fix.t_s > 1.0) return false;
+  NavState s = saved;
+  s.t_s = imu.t_s - imu.dt_s;
+  const Vec3 v_n = fix.has_velocity ? fix.vel_n_mps : saved.v_n_mps;
+  const Vec3& v_saved = saved.v_n_mps;
+  const double speed_min = o_.alignment.speed_min_mps;
+  const bool course_turned =
+      fix.has_velocity && v_n.head<2>().norm() > speed_min && v_saved.head<2>().norm() > speed_min;
+  if (course_turned) {
+    const double turn = std::remainder(std::atan2(v_n.y(), v_n.x()) - std::atan2(v_saved.y(), v_saved.x()), 2.0 * kPi);
+    s.q_b_n = (Quat(Eigen::AngleAxisd(turn, Vec3::UnitZ())) * s.q_b_n).normalized();
+  }
+  // Antenna fix -> IMU centre, then carried to the start of this sample with the velocity.
+  const Vec3 lever_n = s.C_b_n() * filter_.options().lever_arm.init;
+  s.pos = earth::offset_ned(fix.pos, -lever_n + v_n * (s.t_s - fix.t_s));
+  s.v_n_mps = v_n;
+  NavStd sd;
+  sd.pos_ned_m = 2.0 * fix.pos_std_ned_m + Vec3::Constant(0.05);
+  sd.vel_n_mps = fix.has_velocity ? Vec3(2.0 * fix.vel_std_n_mps + Vec3::Constant(0.05)) : Vec3::Constant(2.0);
+  // Attitude kept through a restart gap of a few seconds: heading may have turned meanwhile. Moving
+  // then and now: the saved attitude turned by the change of the course over ground.
+  sd.att_rad = saved_std.att_rad + Vec3(0.5, 0.5, 5.0) * kDegToRad;
+  if (course_turned) sd.att_rad.z() = saved_std.att_rad.z() + o_.alignment.cog_yaw_std_rad;
+  start(s, sd, "warm start", std::nullopt);
+  return true;
+}
+
+void NavSession::start(const NavState& s, const NavStd& sd, const std::string& how,
+                       const std::optional<Vec3>& gyro_bias_seed) {
+  filter_.initialize(s, sd);
+  // A turn-on bias the alignment's static start showed is taken out of every increment (not kept by a warm start).
+  if (gyro_bias_seed) {
+    filter_.set_input_gyro_bias(*gyro_bias_seed);
+    gyro_bias_seed_rad_s_ = *gyro_bias_seed;
+  }
+  if (o_.imu_noise_scale_start && filter_.options().adapt_imu_noise)
+    filter_.set_imu_noise_scale(*o_.imu_noise_scale_start);
+  initialisation_ = given_note_ + how;
+  started_at_s_ = s.t_s;
+  imu_noise_scale_at_start_ = filter_.imu_noise_scale();
+  // Readings up to the initial epoch are not used.
+  while (!gnss_queue_.empty() && gnss_queue_.front().t_s <= s.t_s) gnss_queue_.pop_front();
+  while (!other_queue_.empty() && other_queue_.front()->t_s <= s.t_s) other_queue_.pop_front();
+}
+
+void NavSession::release_backlog() {
+  std::deque<QueuedImu> rest;
+  rest.swap(imu_queue_);
+  for (const QueuedImu& q : rest) navigate(q.imu, q.week);
+}
+
+}  // namespace ldv::est

@@ -1,0 +1,126 @@
+#pragma once
+// One navigation session: what drives a NavFilter from a stream of sensor readings. `ldv nav` over files
+// (run_navigation.hpp), `ldv nav --lcm-log` and the live fusion service all push their readings through it,
+// so every configuration key means the same in all three:
+//  - start: a given state (KF-GINS initpos/initvel/initatt) at the first IMU sample at or after the start
+//    time; a warm start (a service's saved attitude and velocity plus the first GNSS fix); or the
+//    alignment from the data (alignment.hpp), with the slow-course fallback for a vehicle (or walker) that
+//    never reaches the configured speed, and the body-heading hypotheses for an unknown mounting;
+//  - the time window [start_time_s, end_time_s];
+//  - the feeding policy: a reading (GNSS fix, odometer, ...) is handed to the filter when the IMU comes
+//    within kLookahead_s of its epoch, or at once when the IMU has passed that point already (a live
+//    reading arriving late: the filter rewinds and applies it at its epoch).
+// Before the start, IMU samples wait in a queue until a GNSS fix beyond their epoch has arrived (or
+// align_wait_s of arrival time passed), so the aligner sees IMU and GNSS in the same order offline and live,
+// whatever the GNSS latency. Arrival times are the caller's clock: the data time offline, the host time live.
+#include <deque>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "estimator/filter/nav_filter.hpp"
+#include "estimator/ins/alignment.hpp"
+
+namespace ldv::est {
+
+struct SessionOptions {
+  FilterOptions filter;
+  AlignmentOptions alignment;
+  // A given start (its t_s is set by the session); else the data are aligned. It holds at start_time_s: when
+  // the first IMU sample comes more than given_start_max_gap_s later (a live stream joined late), the data
+  // are aligned instead, and initialisation() says so.
+  std::optional<std::pair<NavState, NavStd>> given_start;
+  double given_start_max_gap_s = 1.0;
+  double start_time_s = -1e300, end_time_s = 1e300;  // IMU samples outside are not used
+  // Arrival-clock seconds a queued IMU sample waits for GNSS beyond its epoch before the aligner takes it.
+  double align_wait_s = 1.0;
+  // The slow-course fallback is used when the configured speed is not reached within this much data time
+  // after the fallback aligned (offline, before this session: only when it was never reached in the file).
+  double slow_course_grace_s = 60.0;
+  // The IMU noise scale to start from (FilterOptions::adapt_imu_noise): e.g. measured over a standstill.
+  std::optional<double> imu_noise_scale_start;
+};
+
+class NavSession {
+ public:
+  // Called after every IMU sample the filter navigated, with the GPS week the sample came with.
+  using EpochSink = std::function<void(const NavFilter&, int gps_week)>;
+  static constexpr double kLookahead_s = 0.5;  // readings are handed to the filter this far ahead of the IMU
+  static constexpr double kSlowCourseSpeed_mps = 0.5;
+
+  // Drives `filter` (the caller keeps it: its observer, its results after the run).
+  NavSession(SessionOptions options, NavFilter& filter, EpochSink on_epoch);
+
+  // A service's saved attitude and velocity: used with the first GNSS fix if it comes within 1 s.
+  void set_warm_start(const NavState& saved, const NavStd& saved_std);
+
+  void add_imu(const ImuIncrement& imu, int gps_week, double arrival_s);
+  void add_gnss(const GnssFix& fix, double arrival_s);
+  void add_observation(ObservationPtr reading, double arrival_s);
+  // Lets queued samples through when GNSS is silent (call periodically with the arrival clock).
+  void idle(double now_s);
+  // End of input: the alignment takes what is queued (the slow-course fallback and the heading trial too).
+  void finish();
+
+  bool navigating() const { return filter_.initialized(); }
+  const NavFilter& filter() const { return filter_; }
+  NavFilter& filter() { return filter_; }
+  // "given", "warm start", or the alignment's method with what was decided (fallback, heading trial).
+  const std::string& initialisation() const { return initialisation_; }
+  // A turn-on gyro bias the alignment's static start showed, taken out of every increment (else 0).
+  const Vec3& gyro_bias_seed_rad_s() const { return gyro_bias_seed_rad_s_; }
+  // The filter's initial epoch, and the IMU noise scale it started with (FilterOptions::adapt_imu_noise).
+  double started_at_s() const { return started_at_s_; }
+  double imu_noise_scale_at_start() const { return imu_noise_scale_at_start_; }
+  long imu_samples_used() const { return imu_used_; }
+  long gnss_fixes_used() const { return gnss_used_; }
+  long other_readings_used() const { return others_used_; }
+
+ private:
+  struct QueuedImu {
+    ImuIncrement imu;
+    int week;
+    double arrival_s;
+  };
+  struct Alignment {
+    NavState state;
+    NavStd std;
+    std::string method;
+    Vec3 gyro_bias_seed = Vec3::Zero();
+  };
+  void drain_alignment_queue(double now_s, bool at_end);
+  void take_slow_course_alignment();
+  bool heading_trial_ready(double now_s, bool at_end) const;
+  void run_heading_trial();
+  bool try_warm_start(const ImuIncrement& imu);
+  void aligned(Alignment al);
+  void start(const NavState& s, const NavStd& sd, const std::string& how, const std::optional<Vec3>& gyro_bias_seed);
+  void release_backlog();
+  void navigate(const ImuIncrement& imu, int week);
+  void hand_over_readings(double up_to_s);
+
+  SessionOptions o_;
+  EpochSink on_epoch_;
+  NavFilter& filter_;
+  Aligner aligner_;
+  std::optional<Aligner> slow_aligner_;  // course from kSlowCourseSpeed_mps (when the configured speed is higher)
+  std::optional<Alignment> slow_result_;
+  std::deque<QueuedImu> slow_replay_imu_;  // IMU samples and fixes the aligners took after slow_result_
+  std::vector<GnssFix> slow_replay_gnss_;
+  std::optional<Alignment> trial_;  // aligned from the course: which body heading? (course_hypotheses > 1)
+  std::deque<QueuedImu> imu_queue_;
+  std::deque<GnssFix> gnss_queue_;          // fixes not yet handed over, in time order
+  std::deque<ObservationPtr> other_queue_;  // other sensors' readings not yet handed over, in time order
+  double latest_gnss_t_s_ = -1e300;
+  double latest_imu_seen_t_s_ = -1e300;  // the latest IMU sample received, used or not
+  double latest_imu_arrival_s_ = -1e300;
+  std::optional<std::pair<NavState, NavStd>> warm_;
+  std::optional<GnssFix> warm_fix_;
+  std::string initialisation_, given_note_;
+  Vec3 gyro_bias_seed_rad_s_ = Vec3::Zero();
+  double started_at_s_ = 0.0, imu_noise_scale_at_start_ = 1.0;
+  long imu_used_ = 0, gnss_used_ = 0, others_used_ = 0;
+};
+
+}  // namespace ldv::est

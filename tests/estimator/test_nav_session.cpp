@@ -1,0 +1,142 @@
+// One navigation session for live and offline (estimator/run/nav_session.hpp): fed as a live service is
+// (fixes arriving 0.3 s after their epoch, arrival clock = host time), it gives the offline `ldv nav` answer,
+// alignment and body-heading trial included, on an IMU mounted backwards; a given state holds only at its
+// start time.
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "common/geo/earth_model.hpp"
+#include "estimator/calibrate/installed_imu_noise.hpp"
+#include "estimator/run/run_navigation.hpp"
+#include "sim/simulator.hpp"
+
+namespace ldv::est {
+namespace {
+
+sim::SimResult backwards_mems_drive() {
+  sim::SimRequest req;
+  req.grade = "3dm-gx2";  // a MEMS gyro cannot gyrocompass: the heading comes from the GNSS course
+  req.scenario = "drive";
+  req.duration_s = 150.0;
+  req.gnss_rate_hz = 5.0;
+  req.seed = 11;
+  req.vehicle.mounting_rpy_deg = Vec3(0.0, 0.0, 180.0);  // IMU x axis to the rear
+  return sim::simulate(req);
+}
+
+KfGinsConfig datasheet_config(const sim::SimResult& sim) {
+  KfGinsConfig cfg = sim.kfgins;  // noise from the grade; no initial state: the data are aligned
+  cfg.init_pos.reset();
+  cfg.init_vel_n_mps.reset();
+  cfg.init_rpy_rad.reset();
+  cfg.ldv["align_hypotheses"] = 8;
+  return cfg;
+}
+
+TEST(NavSession, GivenFixesArrivingLateAsLive_WhenTheMountingIsUnknown_ThenTheSessionEqualsTheOfflineRun) {
+  const sim::SimResult sim = backwards_mems_drive();
+  KfGinsConfig cfg = datasheet_config(sim);
+  // End between two fix epochs: a fix tagged exactly at the last IMU sample is applied with that sample on
+  // time, but with the next sample when it comes late (there is none at the end).
+  cfg.end_time_s = sim.imu.back().t_s - 0.1;
+  FilterOptions fo = options_from_kfgins(cfg);
+  ASSERT_EQ(fo.align_hypotheses, 8);
+  ASSERT_EQ(fo.history_s, 0.0) << "offline: fixes are never late";
+
+  // Offline: `ldv nav` over the files.
+  NavFilter offline_filter(fo);
+  std::map<long, NavState> offline;
+  RunCallbacks cb;
+  cb.on_epoch = [&](const NavFilter& f) { offline[std::lround(f.state().t_s * 1e4)] = f.state(); };
+  const RunSummary sum = run_navigation(sim.imu, sim.gnss, cfg, offline_filter, cb);
+  ASSERT_NE(sum.initialisation.find("x axis 180 deg from the course"), std::string::npos) << sum.initialisation;
+
+  // Live: the same session, each fix arriving 0.3 s after its epoch; late fixes are applied at their epoch
+  // by the filter's rewind (history_s), as in the fusion service. The IMU noise scale the offline run
+  // measured over the file's standstill is given to it (live has no file to measure).
+  fo.history_s = 3.0;
+  SessionOptions so = session_options_from(cfg, fo);
+  so.imu_noise_scale_start = sum.imu_noise_scale_start;
+  NavFilter live_filter(fo);
+  std::map<long, NavState> live;
+  double first_late_fix_t = 1e300;  // the live NAV of an epoch is published before its fix arrives
+  NavSession session(so, live_filter, [&](const NavFilter& f, int) {
+    live[std::lround(f.state().t_s * 1e4)] = f.state();
+    for (const auto& r : live_filter.take_innovations())
+      if (r.replayed) first_late_fix_t = std::min(first_late_fix_t, r.t_s);
+  });
+  const double latency_s = 0.3;
+  size_t g = 0;
+  for (const ImuIncrement& inc : sim.imu) {
+    session.add_imu(inc, 2300, inc.t_s);
+    for (; g < sim.gnss.size() && sim.gnss[g].t_s + latency_s <= inc.t_s; ++g) session.add_gnss(sim.gnss[g], inc.t_s);
+  }
+  for (; g < sim.gnss.size(); ++g) session.add_gnss(sim.gnss[g], sim.imu.back().t_s + 0.3);  // the last 0.3 s
+  session.finish();
+  EXPECT_EQ(session.initialisation(), sum.initialisation);
+
+  // Every epoch the offline run wrote, the live session wrote too. Up to the first fix that came late (the
+  // alignment, the heading trial and the backlog released after them) with the same state; after it, each
+  // live NAV is the state before its epoch's fix arrived, and the end state, every fix applied, is the same.
+  ASSERT_GT(offline.size(), 10000u);
+  EXPECT_EQ(live.size(), offline.size());
+  ASSERT_LT(first_late_fix_t, sim.imu.back().t_s);
+  double max_dr_m = 0.0;
+  long compared = 0;
+  for (const auto& [key, a] : offline) {
+    const auto it = live.find(key);
+    ASSERT_NE(it, live.end()) << "epoch " << key * 1e-4 << " missing from the live session";
+    if (key * 1e-4 >= first_late_fix_t - 1e-6) continue;
+    max_dr_m = std::max(max_dr_m, earth::ned_between(a.pos, it->second.pos).norm());
+    ++compared;
+  }
+  const NavState& a = offline_filter.state();
+  const NavState& b = live_filter.state();
+  const double end_dr_m = earth::ned_between(a.pos, b.pos).norm();
+  const double end_dyaw_rad = std::abs(std::remainder(a.rpy_rad().z() - b.rpy_rad().z(), 2 * kPi));
+  std::printf(
+      "live vs offline: %zu epochs, %ld before the first late fix (%.1f s after the start), max difference "
+      "%.3g m; at the end %.3g m, yaw %.3g deg\n",
+      offline.size(), compared, first_late_fix_t - sum.t_start_s, max_dr_m, end_dr_m, end_dyaw_rad * kRadToDeg);
+  EXPECT_GT(compared, 1000);
+  EXPECT_LT(max_dr_m, 1e-9);
+  EXPECT_DOUBLE_EQ(b.t_s, a.t_s);
+  EXPECT_LT(end_dr_m, 1e-6);
+  EXPECT_LT(end_dyaw_rad, 1e-8);
+  EXPECT_LT((offline_filter.covariance() - live_filter.covariance()).norm(), 1e-9 * offline_filter.covariance().norm());
+
+  // And it is right: the heading against the truth at the end (the body x axis points backwards).
+  const NavState& end = live_filter.state();
+  const auto truth = std::lower_bound(sim.truth.begin(), sim.truth.end(), end.t_s - 1e-6,
+                                      [](const sim::TruthSample& s, double t) { return s.t_s < t; });
+  ASSERT_NE(truth, sim.truth.end());
+  EXPECT_LT(std::abs(std::remainder(end.rpy_rad().z() - truth->rpy_rad.z(), 2 * kPi)) * kRadToDeg, 2.0);
+  EXPECT_LT(earth::ned_between(end.pos, truth->pos).head<2>().norm(), 0.5);
+}
+
+TEST(NavSession, GivenAStateForTheStartTime_WhenTheDataStartLater_ThenTheDataAreAlignedInstead) {
+  sim::SimRequest req;
+  req.grade = "hg1700";
+  req.scenario = "drive";
+  req.duration_s = 90.0;
+  req.seed = 3;
+  const sim::SimResult sim = sim::simulate(req);
+  ASSERT_TRUE(sim.kfgins.init_pos.has_value());
+  auto first_start = [&](const KfGinsConfig& cfg) {
+    NavFilter f(options_from_kfgins(cfg));
+    return run_navigation(sim.imu, sim.gnss, cfg, f, {});
+  };
+  // The simulator's configuration: the state holds at the first record: given.
+  const RunSummary given = first_start(sim.kfgins);
+  EXPECT_EQ(given.initialisation, "given");
+  // The same state declared for 5 s before the data (a live stream joined late): it no longer holds.
+  KfGinsConfig late = sim.kfgins;
+  late.start_time_s -= 5.0;
+  const RunSummary aligned = first_start(late);
+  EXPECT_NE(aligned.initialisation.find("aligned instead"), std::string::npos) << aligned.initialisation;
+  EXPECT_GT(aligned.t_start_s, sim.imu.front().t_s);
+}
+
+}  // namespace
+}  // namespace ldv::est
