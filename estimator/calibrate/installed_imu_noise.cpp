@@ -26,16 +26,22 @@ InstalledImuNoise measure_installed_imu_noise(const std::vector<ImuIncrement>& i
                                               double min_standstill_s, double max_speed_mps) {
   InstalledImuNoise out;
   if (imu.size() < 100 || gnss.size() < 3) return out;
-  // The longest run of consecutive fixes whose chord speed to the next fix stays below max_speed_mps.
+  // The longest run of fixes that each stay within max_speed_mps of where the track is kStillWindow_s later.
+  // The window, not the chord to the next fix: at 4 Hz, RTK's centimetre noise alone makes a 0.1 m/s chord.
+  constexpr double kStillWindow_s = 1.0, kMaxWindow_s = 3.0;
   double best_t0 = 0, best_t1 = 0, run_t0 = gnss.front().t_s;
   bool in_run = false;
+  size_t later = 0;
   for (size_t k = 0; k + 1 < gnss.size(); ++k) {
-    const double dt = gnss[k + 1].t_s - gnss[k].t_s;
+    later = std::max(later, k + 1);
+    while (later < gnss.size() && gnss[later].t_s - gnss[k].t_s < kStillWindow_s) ++later;
+    if (later == gnss.size()) break;
+    const double dt = gnss[later].t_s - gnss[k].t_s;
     const bool still =
-        dt > 0 && dt < 2.0 && earth::ned_between(gnss[k].pos, gnss[k + 1].pos).norm() / dt < max_speed_mps;
+        dt <= kMaxWindow_s && earth::ned_between(gnss[k].pos, gnss[later].pos).norm() / dt < max_speed_mps;
     if (still && !in_run) run_t0 = gnss[k].t_s;
     in_run = still;
-    if (still && gnss[k + 1].t_s - run_t0 > best_t1 - best_t0) best_t0 = run_t0, best_t1 = gnss[k + 1].t_s;
+    if (still && gnss[later].t_s - run_t0 > best_t1 - best_t0) best_t0 = run_t0, best_t1 = gnss[later].t_s;
   }
   if (best_t1 - best_t0 < min_standstill_s) return out;
   // The scatter of the rates about their mean over the standstill (1 s margins: the stop's settling).

@@ -73,6 +73,12 @@ double NavFilter::gate_threshold(int dof) const {
   return math::chi_square_quantile(opt_.gate_probability, dof);
 }
 
+void NavFilter::restart() {
+  FilterObserver* observer = observer_.p;
+  *this = NavFilter(opt_);
+  observer_.p = observer;
+}
+
 void NavFilter::initialize(const NavState& s, const NavStd& std) {
   // A NaN or absurd initial state would freeze the filter (every step rejected as non-finite).
   if (!finite(s) || std::abs(s.pos.lat_rad) > 0.5 * M_PI || s.pos.h_m < -1.2e4 || s.pos.h_m > 1e6 ||

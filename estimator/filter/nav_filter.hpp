@@ -40,6 +40,8 @@ class NavFilter {
   // Starts the filter at `s` with this uncertainty; effect blocks start at their priors.
   void initialize(const NavState& s, const NavStd& std);
   bool initialized() const { return c_.initialized; }
+  // Forgets the run: back to before initialize(), with the same options and observer (a redone alignment).
+  void restart();
 
   void add_imu(const ImuIncrement& raw);
   // An external sensor's reading (GNSS fix, odometer, ...); an invalid one is counted and dropped.

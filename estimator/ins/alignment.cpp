@@ -30,22 +30,65 @@ Aligner::Aligner(AlignmentOptions o)
 
 void Aligner::add_imu(const ImuIncrement& raw) {
   t_s_ = raw.t_s;
+  if (first_imu_t_s_ < -1e299) first_imu_t_s_ = raw.t_s;
   const bool stat = detector_.add(raw.dt_s, raw.dtheta_b_rad / raw.dt_s, raw.dvel_b_mps / raw.dt_s);
   if (!moving_seen_) {
     // Accumulate from the start until the first motion (the detector needs one full window first).
     const bool window_full = static_s_ >= 0.6;
-    if (window_full && !stat) {
+    if (o_.gnss_checks && window_full && !stat) {
+      hold_until_gnss_says(raw);
+    } else if (window_full && !stat) {
       moving_seen_ = true;
     } else {
-      sum_dv_ += raw.dvel_b_mps;
-      sum_dtheta_ += raw.dtheta_b_rad;
-      static_s_ += raw.dt_s;
+      add_static(raw);
+      for (const ImuIncrement& held : held_) add_static(held);  // the IMU stopped: it was a blip
+      held_.clear();
     }
   }
   if (!levelled_ && (moving_seen_ || static_s_ >= o_.static_min_s)) level();
-  if (levelled_ && moving_seen_) {
-    const Vec3 dtheta = gyro_bias_seed_ ? Vec3(raw.dtheta_b_rad - *gyro_bias_seed_ * raw.dt_s) : raw.dtheta_b_rad;
-    q_b_l_ = (q_b_l_ * quat_from_rotvec(dtheta)).normalized();
+  if (levelled_ && moving_seen_ && !just_moved_) carry_attitude(raw);
+  just_moved_ = false;
+}
+
+void Aligner::resume_levelled(const Quat& q_b_n, const Vec3& level_std_rad, const std::optional<Vec3>& seed) {
+  Vec3 rpy = euler_from_C_b_n(q_b_n.toRotationMatrix());
+  rpy.z() = 0.0;  // the course decides the heading
+  q_b_l_ = quat_from_euler(rpy);
+  level_std_rad_ = Vec3(level_std_rad.x(), level_std_rad.y(), 0.0);
+  gyro_bias_seed_ = seed;
+  levelled_ = true;
+  moving_seen_ = true;
+  held_.clear();
+}
+
+void Aligner::add_static(const ImuIncrement& raw) {
+  sum_dv_ += raw.dvel_b_mps;
+  sum_dtheta_ += raw.dtheta_b_rad;
+  static_s_ += raw.dt_s;
+}
+
+void Aligner::carry_attitude(const ImuIncrement& raw) {
+  const Vec3 dtheta = gyro_bias_seed_ ? Vec3(raw.dtheta_b_rad - *gyro_bias_seed_ * raw.dt_s) : raw.dtheta_b_rad;
+  q_b_l_ = (q_b_l_ * quat_from_rotvec(dtheta)).normalized();
+}
+
+void Aligner::hold_until_gnss_says(const ImuIncrement& raw) {
+  // The IMU says moving. An installed IMU vibrates above the datasheet noise the detector expects, so the
+  // samples are held until the GNSS decides: motion (two chords that agree) -> the motion began with the
+  // first held sample; no motion while fixes come -> the held samples older than kHoldMax_s were at rest.
+  held_.push_back(raw);
+  const bool gnss_silent = t_s_ - std::max(last_fix_t_s_, first_imu_t_s_) > kGnssSilent_s;
+  if (gnss_moving_ || gnss_silent) {
+    moving_seen_ = true;
+    level();  // again, from the whole standstill (an early levelling had its first static_min_s only)
+    for (const ImuIncrement& held : held_) carry_attitude(held);  // this sample is the last of them
+    just_moved_ = true;
+    held_.clear();
+    return;
+  }
+  while (!held_.empty() && held_.front().t_s < t_s_ - kHoldMax_s) {
+    add_static(held_.front());
+    held_.pop_front();
   }
 }
 
@@ -64,17 +107,31 @@ void Aligner::level() {
   levelled_ = true;
 }
 
+bool Aligner::chords_agree(const Vec3& previous, const Vec3& chord, double speed_min) const {
+  const double a = previous.head<2>().norm(), b = chord.head<2>().norm();
+  if (a < speed_min || b < speed_min) return false;
+  const double cos_angle = previous.head<2>().dot(chord.head<2>()) / (a * b);
+  return cos_angle > std::cos(30.0 * kDegToRad) && b < 2.0 * a && a < 2.0 * b;
+}
+
 void Aligner::add_gnss(const GnssFix& fix) {
-  if (result_ || !levelled_) {
-    prev_fix_ = fix;
-    return;
-  }
+  // The chord from the previous fix (at most 1.5 s before; a longer gap says little about the course now).
+  std::optional<Vec3> chord;
+  if (prev_fix_ && fix.t_s - prev_fix_->t_s > 0.0 && fix.t_s - prev_fix_->t_s <= 1.5)
+    chord = earth::ned_between(prev_fix_->pos, fix.pos) / (fix.t_s - prev_fix_->t_s);
+  const std::optional<Vec3> chord_before = prev_chord_mps_;
+  prev_fix_ = fix;
+  prev_chord_mps_ = chord;
+  last_fix_t_s_ = fix.t_s;
+  constexpr double kWalkingPace_mps = 0.5;
+  gnss_moving_ = chord && chord_before && chords_agree(*chord_before, *chord, kWalkingPace_mps);
+  if (result_ || !levelled_) return;
+
   NavState s;
   s.t_s = t_s_;
   NavStd sd;
   sd.pos_ned_m = fix.pos_std_ned_m.cwiseMax(0.05) * 2.0;
   const Vec3 rpy_l = euler_from_C_b_n(q_b_l_.toRotationMatrix());
-
   // Gyrocompassing while still static, when the gyros can do it.
   const double yaw_std = gyrocompass_yaw_std(fix.pos.lat_rad, o_.gyro_bias_std_rad_s, o_.arw_rad_per_sqrt_s, static_s_);
   if (!moving_seen_ && static_s_ >= o_.gyrocompass_min_s && yaw_std <= o_.gyrocompass_max_yaw_std_rad) {
@@ -85,20 +142,23 @@ void Aligner::add_gnss(const GnssFix& fix) {
     sd.att_rad = Vec3(level_std_rad_.x(), level_std_rad_.y(), 2.0 * yaw_std);
     method_ = "levelling + gyrocompassing";
   } else {
-    // Course over ground, from the fix's velocity or from two consecutive positions.
+    // Course over ground, from the fix's velocity or from consecutive positions.
     Vec3 v_n;
     double v_std = 0.0;
-    if (fix.has_velocity) {
+    if (fix.has_velocity && o_.use_fix_velocity) {
       v_n = fix.vel_n_mps;
       v_std = fix.vel_std_n_mps.maxCoeff();
-    } else if (prev_fix_ && fix.t_s - prev_fix_->t_s > 0.0 && fix.t_s - prev_fix_->t_s <= 1.5) {
-      v_n = earth::ned_between(prev_fix_->pos, fix.pos) / (fix.t_s - prev_fix_->t_s);
+    } else if (chord && !o_.gnss_checks) {
+      v_n = *chord;
       v_std = 0.5;  // difference over up to 1 s while accelerating
+    } else if (chord && chord_before && chords_agree(*chord_before, *chord, o_.speed_min_mps)) {
+      // The chord's velocity holds half an interval before the fix: carried to the fix's epoch with the
+      // change from the chord before.
+      v_n = *chord + 0.5 * (*chord - *chord_before);
+      v_std = 0.25;
     } else {
-      prev_fix_ = fix;
       return;
     }
-    prev_fix_ = fix;
     if (v_n.head<2>().norm() < o_.speed_min_mps) return;
     const double cog = std::atan2(v_n.y(), v_n.x());
     const Vec3 x_l = q_b_l_ * Vec3::UnitX();

@@ -10,6 +10,7 @@
 // A gyro turn-on bias far above Earth rate (a MEMS IMU: tenths of a degree per second) shows as the
 // mean rate of the static start: it is taken out of the carried attitude and reported
 // (gyro_bias_seed), for the filter to take out of the increments too (set_input_gyro_bias).
+#include <deque>
 #include <optional>
 #include <string>
 
@@ -42,11 +43,22 @@ struct AlignmentOptions {
   int course_hypotheses = 1;
   double course_trial_s = 8.0;
   Vec3 lever_arm_b_m = Vec3::Zero();
+  // The GNSS has a say (off in KF-GINS-compatible runs, FilterOptions::robust_update):
+  //  - standstill: an IMU vibrating in a car at rest (engine, 10x its datasheet noise) never looks static to
+  //    a detector tuned to the datasheet; motion is taken from the IMU only once the GNSS shows it too (two
+  //    consecutive chords that agree), or when there has been no fix for kGnssSilent_s;
+  //  - course: from two consecutive chords that agree in direction and speed, extrapolated to the fix's epoch
+  //    (one outlying fix while standing gives one fast chord out and one back: no course from it).
+  bool gnss_checks = false;
+  bool use_fix_velocity = true;  // the fixes' own velocity for the course (off when the velocity check refused it)
 };
 
 class Aligner {
  public:
   explicit Aligner(AlignmentOptions o);
+  // A redo while moving (a failed alignment, NavSession): the level of `q_b_n` (its roll and pitch, with
+  // this std) is kept, the course is taken again from the GNSS, and the turn-on gyro bias stays as seeded.
+  void resume_levelled(const Quat& q_b_n, const Vec3& level_std_rad, const std::optional<Vec3>& gyro_bias_seed);
   void add_imu(const ImuIncrement& raw);
   void add_gnss(const GnssFix& fix);
   bool aligned() const { return result_.has_value(); }
@@ -58,6 +70,13 @@ class Aligner {
 
  private:
   void level();
+  void add_static(const ImuIncrement& raw);
+  void carry_attitude(const ImuIncrement& raw);
+  void hold_until_gnss_says(const ImuIncrement& raw);
+  // A chord between consecutive fixes that goes on in the previous chord's direction at a similar speed.
+  bool chords_agree(const Vec3& previous_mps, const Vec3& chord_mps, double speed_min_mps) const;
+  static constexpr double kGnssSilent_s = 3.0;
+  static constexpr double kHoldMax_s = 3.0;
   AlignmentOptions o_;
   StaticDetector detector_;
   double t_s_ = 0.0;
@@ -68,6 +87,11 @@ class Aligner {
   Quat q_b_l_ = Quat::Identity();  // body to a levelled frame of arbitrary yaw, carried by the gyros
   Vec3 level_std_rad_ = Vec3::Zero();
   std::optional<GnssFix> prev_fix_;
+  std::optional<Vec3> prev_chord_mps_;  // the chord that ended at prev_fix_
+  bool gnss_moving_ = false;            // the last two chords agree above a walking pace
+  double first_imu_t_s_ = -1e300, last_fix_t_s_ = -1e300;
+  std::deque<ImuIncrement> held_;  // moving by the IMU, not yet by the GNSS (AlignmentOptions::gnss_checks)
+  bool just_moved_ = false;        // the held samples, this one included, were just carried
   std::optional<std::pair<NavState, NavStd>> result_;
   std::optional<Vec3> gyro_bias_seed_;
   std::string method_;

@@ -21,6 +21,10 @@ AlignmentOptions alignment_options_from(const FilterOptions& fo) {
   if (!(std::isfinite(fo.align_speed_mps) && fo.align_speed_mps > 0))
     throw std::invalid_argument("align_speed_mps must be > 0 and finite");
   ao.course_hypotheses = std::max(1, fo.align_hypotheses);
+  // KF-GINS-compatible runs keep the aligner as it was; otherwise the GNSS checks standstill and course, and
+  // a velocity the velocity check refused is not used for the course either.
+  ao.gnss_checks = fo.robust_update;
+  ao.use_fix_velocity = !fo.robust_update || fo.use_gnss_velocity;
   return ao;
 }
 }  // namespace ldv::est

@@ -33,11 +33,13 @@ void insert_in_time_order(Queue& q, T item, double t_s) {
 
 NavSession::NavSession(SessionOptions options, NavFilter& filter, EpochSink on_epoch)
     : o_(std::move(options)), on_epoch_(std::move(on_epoch)), filter_(filter), aligner_(o_.alignment) {
-  if (o_.alignment.speed_min_mps > kSlowCourseSpeed_mps) {
-    AlignmentOptions slow = o_.alignment;
-    slow.speed_min_mps = kSlowCourseSpeed_mps;
-    slow_aligner_.emplace(slow);
-  }
+  if (o_.alignment.speed_min_mps > kSlowCourseSpeed_mps) slow_aligner_.emplace(slow_course_options());
+}
+
+AlignmentOptions NavSession::slow_course_options() const {
+  AlignmentOptions slow = o_.alignment;
+  slow.speed_min_mps = kSlowCourseSpeed_mps;
+  return slow;
 }
 
 void NavSession::set_warm_start(const NavState& saved, const NavStd& saved_std) {
@@ -111,6 +113,7 @@ void NavSession::finish() {
 void NavSession::hand_over_readings(double up_to_s) {
   for (; !gnss_queue_.empty() && gnss_queue_.front().t_s <= up_to_s; gnss_queue_.pop_front()) {
     filter_.add_gnss(gnss_queue_.front());
+    insert_in_time_order(fixes_to_check_, gnss_queue_.front(), gnss_queue_.front().t_s);
     ++gnss_used_;
   }
   for (; !other_queue_.empty() && other_queue_.front()->t_s <= up_to_s; other_queue_.pop_front()) {
@@ -121,9 +124,51 @@ void NavSession::hand_over_readings(double up_to_s) {
 
 void NavSession::navigate(const ImuIncrement& imu, int week) {
   hand_over_readings(imu.t_s + kLookahead_s);
+  for (; !fixes_to_check_.empty() && fixes_to_check_.front().t_s <= imu.t_s; fixes_to_check_.pop_front())
+    heading_check_.add_fix(fixes_to_check_.front());
   filter_.add_imu(imu);
   ++imu_used_;
+  heading_check_.add_imu(filter_.state().q_b_n * imu.dvel_b_mps);
   if (on_epoch_) on_epoch_(filter_, week);
+  if (!filter_.options().robust_update) return;
+  // Failed: beyond the threshold and beyond 3 sigma of the filter's own heading (after a long outage it knows
+  // its heading is poor, and the fixes will correct it).
+  const std::optional<double> misfit = heading_check_.heading_misfit_rad();
+  if (misfit && std::abs(*misfit) > std::max(o_.heading_failed_rad, 3.0 * filter_.nav_std().att_rad.z()))
+    realign(*misfit);
+}
+
+void NavSession::realign(double misfit_rad) {
+  const NavState lost = filter_.state();
+  const NavStd lost_std = filter_.nav_std();
+  heading_check_.clear();
+  fixes_to_check_.clear();
+  ++realignments_;
+  filter_.restart();
+  // Aligned again from here on: the level the filter held (tilt shows in every fix, unlike heading), the
+  // course anew, with the axis-aligned body headings at least (the one taken before has just failed).
+  o_.alignment.course_hypotheses = std::max(o_.alignment.course_hypotheses, 4);
+  const Vec3 level_std(std::max(lost_std.att_rad.x(), 2.0 * kDegToRad), std::max(lost_std.att_rad.y(), 2.0 * kDegToRad),
+                       0.0);
+  const std::optional<Vec3> seed =
+      gyro_bias_seed_rad_s_.isZero() ? std::nullopt : std::optional<Vec3>(gyro_bias_seed_rad_s_);
+  aligner_ = Aligner(o_.alignment);
+  aligner_.resume_levelled(lost.q_b_n, level_std, seed);
+  slow_aligner_.reset();
+  slow_result_.reset();
+  slow_replay_imu_.clear();
+  slow_replay_gnss_.clear();
+  if (o_.alignment.speed_min_mps > kSlowCourseSpeed_mps) {
+    slow_aligner_.emplace(slow_course_options());
+    slow_aligner_->resume_levelled(lost.q_b_n, level_std, seed);
+  }
+  trial_.reset();
+  char b[200];
+  std::snprintf(b, sizeof b,
+                "; at %.1f s the IMU's accelerations were turned %.0f deg against the GNSS track's: aligned again "
+                "while moving: ",
+                lost.t_s, misfit_rad * kRadToDeg);
+  redo_note_ = initialisation_ + b;
 }
 
 void NavSession::drain_alignment_queue(double now_s, bool at_end) {
@@ -214,15 +259,30 @@ void NavSession::run_heading_trial() {
   const double step = 2.0 * kPi / n;
   const double t_window_end = std::min(o_.end_time_s, al.state.t_s + o_.alignment.course_trial_s);
   double best_cost = 1e300, best_dyaw = 0.0;
-  for (int k = 0; k < n; ++k) {
+  // First by the accelerations: the IMU's velocity changes (the aligned attitude carried by the gyros alone)
+  // against the GNSS track's over the window give the heading error directly (heading_check.hpp); the
+  // hypothesis nearest to it is taken. The innovations of a filter per hypothesis decide only when the window
+  // has too little acceleration for that.
+  const std::optional<double> misfit = window_heading_misfit(al, t_window_end);
+  if (misfit) {
+    const double k = std::remainder(-*misfit, 2.0 * kPi) / step;
+    best_dyaw = std::remainder(std::lround(k) * step, 2.0 * kPi);
+    if (best_dyaw < 0) best_dyaw += 2.0 * kPi;
+  }
+  for (int k = 0; k < n && !misfit; ++k) {
     const double dyaw = k * step;
-    NavFilter trial(filter_.options());
+    // Without the in-flight noise adaptation (held at the installed noise): adapted, a wrong heading follows
+    // the fixes too (the trial's NIS would barely tell them apart).
+    FilterOptions trial_options = filter_.options();
+    trial_options.adapt_imu_noise = false;
+    NavFilter trial(trial_options);
     NavState s = al.state;
     s.q_b_n = (Quat(Eigen::AngleAxisd(dyaw, Vec3::UnitZ())) * al.state.q_b_n).normalized();
     NavStd sd = al.std;
     sd.att_rad.z() = std::max(al.std.att_rad.z(), 0.5 * step);
     trial.initialize(s, sd);
     trial.set_input_gyro_bias(al.gyro_bias_seed);
+    if (o_.imu_noise_scale_start) trial.set_imu_noise_scale(*o_.imu_noise_scale_start);
     auto fix = std::upper_bound(gnss_queue_.begin(), gnss_queue_.end(), s.t_s,
                                 [](double t, const GnssFix& g) { return t < g.t_s; });
     double cost = 0.0;
@@ -240,9 +300,25 @@ void NavSession::run_heading_trial() {
   }
   al.state.q_b_n = (Quat(Eigen::AngleAxisd(best_dyaw, Vec3::UnitZ())) * al.state.q_b_n).normalized();
   al.std.att_rad.z() = std::max(al.std.att_rad.z(), 0.5 * step);
-  al.method += " (best of " + std::to_string(n) + " body headings: x axis " +
-               std::to_string(static_cast<int>(std::lround(best_dyaw * kRadToDeg))) + " deg from the course)";
+  al.method += " (best of " + std::to_string(n) + " body headings" + (misfit ? " by the accelerations" : "") +
+               ": x axis " + std::to_string(static_cast<int>(std::lround(best_dyaw * kRadToDeg))) +
+               " deg from the course)";
   start(al.state, al.std, al.method, al.gyro_bias_seed);
+}
+
+std::optional<double> NavSession::window_heading_misfit(const Alignment& al, double t_window_end) const {
+  HeadingCheck check(o_.alignment.course_trial_s + 1.0);
+  Quat q_b_n = al.state.q_b_n;
+  auto fix = std::upper_bound(gnss_queue_.begin(), gnss_queue_.end(), al.state.t_s,
+                              [](double t, const GnssFix& g) { return t < g.t_s; });
+  for (const QueuedImu& q : imu_queue_) {
+    if (q.imu.t_s > t_window_end) break;
+    if (q.imu.t_s <= al.state.t_s) continue;
+    for (; fix != gnss_queue_.end() && fix->t_s <= q.imu.t_s; ++fix) check.add_fix(*fix);
+    q_b_n = (q_b_n * quat_from_rotvec(q.imu.dtheta_b_rad - al.gyro_bias_seed * q.imu.dt_s)).normalized();
+    check.add_imu(q_b_n * q.imu.dvel_b_mps);
+  }
+  return check.heading_misfit_rad();
 }
 
 bool NavSession::try_warm_start(const ImuIncrement& imu) {
@@ -287,7 +363,7 @@ void NavSession::start(const NavState& s, const NavStd& sd, const std::string& h
   }
   if (o_.imu_noise_scale_start && filter_.options().adapt_imu_noise)
     filter_.set_imu_noise_scale(*o_.imu_noise_scale_start);
-  initialisation_ = given_note_ + how;
+  initialisation_ = redo_note_.empty() ? given_note_ + how : redo_note_ + how;
   started_at_s_ = s.t_s;
   imu_noise_scale_at_start_ = filter_.imu_noise_scale();
   // Readings up to the initial epoch are not used.

@@ -21,6 +21,7 @@
 
 #include "estimator/filter/nav_filter.hpp"
 #include "estimator/ins/alignment.hpp"
+#include "estimator/run/heading_check.hpp"
 
 namespace ldv::est {
 
@@ -40,6 +41,12 @@ struct SessionOptions {
   double slow_course_grace_s = 60.0;
   // The IMU noise scale to start from (FilterOptions::adapt_imu_noise): e.g. measured over a standstill.
   std::optional<double> imu_noise_scale_start;
+  // A failed alignment is redone (robust runs, FilterOptions::robust_update): when the horizontal velocity
+  // changes the IMU senses, in the navigated attitude, are turned by more than this against the GNSS track's
+  // (heading_check.hpp), and by more than 3 sigma of the filter's heading std, the heading has failed (a false
+  // course, a mounting the trial missed): the data are aligned again while moving, with at least 4 body
+  // headings (the axis-aligned mountings).
+  double heading_failed_rad = 30.0 * kDegToRad;
 };
 
 class NavSession {
@@ -76,6 +83,8 @@ class NavSession {
   long imu_samples_used() const { return imu_used_; }
   long gnss_fixes_used() const { return gnss_used_; }
   long other_readings_used() const { return others_used_; }
+  // Alignments redone after the navigated heading failed (SessionOptions::heading_failed_rad).
+  int realignments() const { return realignments_; }
 
  private:
   struct QueuedImu {
@@ -90,15 +99,19 @@ class NavSession {
     Vec3 gyro_bias_seed = Vec3::Zero();
   };
   void drain_alignment_queue(double now_s, bool at_end);
+  AlignmentOptions slow_course_options() const;
   void take_slow_course_alignment();
   bool heading_trial_ready(double now_s, bool at_end) const;
   void run_heading_trial();
+  // The heading error of `al` from the accelerations up to t_window_end (HeadingCheck), when they show it.
+  std::optional<double> window_heading_misfit(const Alignment& al, double t_window_end) const;
   bool try_warm_start(const ImuIncrement& imu);
   void aligned(Alignment al);
   void start(const NavState& s, const NavStd& sd, const std::string& how, const std::optional<Vec3>& gyro_bias_seed);
   void release_backlog();
   void navigate(const ImuIncrement& imu, int week);
   void hand_over_readings(double up_to_s);
+  void realign(double misfit_rad);
 
   SessionOptions o_;
   EpochSink on_epoch_;
@@ -117,10 +130,13 @@ class NavSession {
   double latest_imu_arrival_s_ = -1e300;
   std::optional<std::pair<NavState, NavStd>> warm_;
   std::optional<GnssFix> warm_fix_;
-  std::string initialisation_, given_note_;
+  std::string initialisation_, given_note_, redo_note_;
   Vec3 gyro_bias_seed_rad_s_ = Vec3::Zero();
   double started_at_s_ = 0.0, imu_noise_scale_at_start_ = 1.0;
   long imu_used_ = 0, gnss_used_ = 0, others_used_ = 0;
+  HeadingCheck heading_check_;
+  std::deque<GnssFix> fixes_to_check_;  // handed to the filter, not yet to heading_check_
+  int realignments_ = 0;
 };
 
 }  // namespace ldv::est

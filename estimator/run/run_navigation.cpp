@@ -206,7 +206,8 @@ RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vecto
     if (cb.on_progress && i % progress_step == 0) cb.on_progress(static_cast<double>(i) / n_total);
   }
   session.finish();
-  if (!session.navigating()) throw InputError(cfg.gnss_path, 0, could_not_align(so));
+  // Never started: an error. (Started, then aligning again at the end after a failed heading: the run stands.)
+  if (session.imu_samples_used() == 0) throw InputError(cfg.gnss_path, 0, could_not_align(so));
   sum.imu_samples = session.imu_samples_used();
   sum.gnss_fixes = session.gnss_fixes_used();
   sum.other_observations = session.other_readings_used();

@@ -76,8 +76,11 @@ TEST(DiagnoseIterate, TwoHiddenEffectsAreAddedStepByStepAndTheTunedConfigUsesEve
   EXPECT_EQ(checked, 4) << "lever arm (3) and time offset (1) in the verdict";
   const double nis_first = steps[0]["mean_nis"].as<double>(),
                nis_last = steps[steps.size() - 1]["mean_nis"].as<double>();
-  EXPECT_LT(nis_last, 0.2 * nis_first) << "the NIS must fall: " << nis_first << " -> " << nis_last;
+  // Each record's NIS counts up to the gate (model_check.cpp): the model under test is beyond the band a
+  // consistent one stays in, the final model within it, and it uses more of the fixes.
+  EXPECT_GT(nis_first, 4.5) << "the NIS must fall: " << nis_first << " -> " << nis_last;
   EXPECT_LT(nis_last, 4.5);
+  EXPECT_GT(steps[steps.size() - 1]["accepted_fixes"].as<int>(), steps[0]["accepted_fixes"].as<int>());
 
   // The tuned configuration adds both and uses every fix.
   const YAML::Node t = YAML::LoadFile(tuned.string());

@@ -61,7 +61,10 @@ constexpr double kOpenGateProbability = 1.0 - 1e-12;  // NIS gate ~ 60: only num
 
 }  // namespace
 
-bool Diagnosis::consistent() const { return add.empty() && !steps.empty() && steps.front().check.consistent(); }
+// The model as it ends (with what was added) passes its check, and the last step found nothing more to add.
+bool Diagnosis::consistent() const {
+  return !steps.empty() && steps.back().added.empty() && steps.back().check.consistent();
+}
 
 namespace {
 

@@ -60,7 +60,7 @@ struct Diagnosis {
   double imu_noise_scale = 1.0;
   bool imu_noise_applied = false;
   ModelCheck configured_check;
-  bool consistent() const;           // model check passes and nothing to add
+  bool consistent() const;  // the final model passes its check and the last step adds nothing
 };
 
 // Above this factor on the configured PSD the measured IMU noise replaces the configured one.

@@ -11,6 +11,8 @@
 namespace ldv::diag {
 namespace {
 
+constexpr double kNisCapProbability = 0.9999;  // est::FilterOptions::gate_probability's default
+
 // Band for the mean of n_eff values each distributed as chi-square(dof)/dof*expected.
 Band mean_band(double value, double expected, double dof, double n_eff, double confidence) {
   Band b;
@@ -89,19 +91,29 @@ ModelCheck check_model(const FilterRun& run, const std::vector<Segment>& labels,
     sc.count = static_cast<int>(rs.size());
     if (kind == est::sensors::kGnssPosition && rs.size() > 1)
       mc.measurement_interval_s = (rs.back()->t_s - rs.front()->t_s) / (rs.size() - 1);
+    // NIS and per-axis NIS each capped at the chi-square gate of its rows (the filter's default gate): a
+    // rejected outlier weighs as much as a measurement just at the gate, not its NIS of 10^4 (one 2 m jump
+    // among 1000 RTK fixes would otherwise lift the mean by ~10 and hide whether the model fits the rest),
+    // while a filter that left the measurements still shows a mean near the gate. The RMS is over the
+    // measurements used (rejections are counted apart); whiteness over all of them, in time order.
+    const double nis_cap = math::chi_square_quantile(kNisCapProbability, rows),
+                 axis_cap = math::chi_square_quantile(kNisCapProbability, 1);
     std::vector<Eigen::VectorXd> w;  // normalised innovations nu_i / sqrt(S_ii)
     double nis_sum = 0.0;
     Eigen::VectorXd axis_sum = Eigen::VectorXd::Zero(rows), sq = Eigen::VectorXd::Zero(rows);
     for (const auto* r : rs) {
       const Eigen::VectorXd sd = r->S.diagonal().cwiseSqrt();
       w.push_back(r->innovation.cwiseQuotient(sd));
-      nis_sum += r->nis;
-      axis_sum += w.back().cwiseAbs2();
+      nis_sum += std::min(r->nis, nis_cap);
+      axis_sum += w.back().cwiseAbs2().cwiseMin(axis_cap);
+      if (!r->used) {
+        ++sc.rejected;
+        continue;
+      }
       sq += r->innovation.cwiseAbs2();
-      if (!r->used) ++sc.rejected;
     }
     const double n = sc.count;
-    sc.rms = (sq / n).cwiseSqrt();
+    sc.rms = (sq / std::max(1, sc.count - sc.rejected)).cwiseSqrt();
     // Whiteness: autocorrelation, Ljung-Box over h lags, integrated correlation time with Sokal's window.
     const int max_lag = std::min(sc.count / 4, 200);
     sc.autocorrelation = autocorrelation(w, max_lag);
@@ -134,14 +146,17 @@ ModelCheck check_model(const FilterRun& run, const std::vector<Segment>& labels,
     for (const auto* r : rs) {
       const int s = static_cast<int>(segment_at(run.epochs, labels, r->t_s));
       ++seg[s].count;
-      seg_nis[s] += r->nis;
+      seg_nis[s] += std::min(r->nis, nis_cap);
+      if (!r->used) {
+        ++seg[s].rejected;
+        continue;
+      }
       seg_sq[s] += r->innovation.cwiseAbs2();
-      if (!r->used) ++seg[s].rejected;
     }
     for (int s = 0; s < kSegmentCount; ++s) {
       if (seg[s].count == 0) continue;
       const double ns = seg[s].count;
-      seg[s].rms = (seg_sq[s] / ns).cwiseSqrt();
+      seg[s].rms = (seg_sq[s] / std::max(1, seg[s].count - seg[s].rejected)).cwiseSqrt();
       seg[s].mean_nis = mean_band(seg_nis[s] / ns, rows, rows, std::max(1.0, ns / sc.correlation_time), confidence);
       sc.segments.push_back(seg[s]);
     }
