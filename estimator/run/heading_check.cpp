@@ -25,10 +25,14 @@ void HeadingCheck::add_fix(const GnssFix& fix) {
   if (last_chord_mps_) {
     // Chords hold at the middles of their intervals: the velocity change between them is the IMU's over the
     // second half of the one and the first half of the other.
-    pairs_.push_back({fix.t_s, 0.5 * (*last_dv_imu_mps_ + dv_imu), chord - *last_chord_mps_,
-                      std::hypot(chord_std, last_chord_std_mps_)});
-    while (pairs_.front().t_s < fix.t_s - window_s_) pairs_.pop_front();
+    const Pair p{fix.t_s, 0.5 * (*last_dv_imu_mps_ + dv_imu), chord - *last_chord_mps_,
+                 std::hypot(chord_std, last_chord_std_mps_)};
+    // A heading error turns the IMU's velocity change but keeps its size: a pair whose sizes differ is a GNSS
+    // outlier (a 2 m jump makes velocity changes of 2-4 m/s the IMU never felt), or a shock; left out.
+    const double size_misfit = std::abs(p.dv_gnss_mps.norm() - p.dv_imu_mps.norm());
+    if (size_misfit <= 3.0 * p.gnss_std_mps + kSizeTolerance_mps) pairs_.push_back(p);
   }
+  while (!pairs_.empty() && pairs_.front().t_s < fix.t_s - window_s_) pairs_.pop_front();
   last_fix_ = fix;
   last_chord_mps_ = chord;
   last_chord_std_mps_ = chord_std;

@@ -16,6 +16,9 @@ namespace ldv::est {
 class HeadingCheck {
  public:
   static constexpr double kMinInterval_s = 0.9;
+  // How far the sizes of the IMU's and the GNSS's velocity change may differ beyond the chord noise (an IMU
+  // latency of 0.3 s under 1 m/s^2 of changing acceleration, a bias of 0.1 m/s^2 over 1 s).
+  static constexpr double kSizeTolerance_mps = 0.3;
   explicit HeadingCheck(double window_s = 20.0) : window_s_(window_s) {}
   // The IMU's velocity increment rotated to NED with the navigated attitude (gravity and Coriolis left out:
   // only horizontal components are used, where they are second order), over the sample ending at t_s.

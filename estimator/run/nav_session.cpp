@@ -133,9 +133,16 @@ void NavSession::navigate(const ImuIncrement& imu, int week) {
   if (!filter_.options().robust_update) return;
   // Failed: beyond the threshold and beyond 3 sigma of the filter's own heading (after a long outage it knows
   // its heading is poor, and the fixes will correct it).
+  // And for heading_failed_for_s on end: one window's worth of odd data does not restart a filter.
   const std::optional<double> misfit = heading_check_.heading_misfit_rad();
-  if (misfit && std::abs(*misfit) > std::max(o_.heading_failed_rad, 3.0 * filter_.nav_std().att_rad.z()))
-    realign(*misfit);
+  const bool failing =
+      misfit && std::abs(*misfit) > std::max(o_.heading_failed_rad, 3.0 * filter_.nav_std().att_rad.z());
+  if (!failing) {
+    heading_failing_since_s_.reset();
+    return;
+  }
+  if (!heading_failing_since_s_) heading_failing_since_s_ = imu.t_s;
+  if (imu.t_s - *heading_failing_since_s_ >= o_.heading_failed_for_s) realign(*misfit);
 }
 
 void NavSession::realign(double misfit_rad) {
@@ -143,6 +150,7 @@ void NavSession::realign(double misfit_rad) {
   const NavStd lost_std = filter_.nav_std();
   heading_check_.clear();
   fixes_to_check_.clear();
+  heading_failing_since_s_.reset();
   ++realignments_;
   filter_.restart();
   // Aligned again from here on: the level the filter held (tilt shows in every fix, unlike heading), the

@@ -44,9 +44,10 @@ struct SessionOptions {
   // A failed alignment is redone (robust runs, FilterOptions::robust_update): when the horizontal velocity
   // changes the IMU senses, in the navigated attitude, are turned by more than this against the GNSS track's
   // (heading_check.hpp), and by more than 3 sigma of the filter's heading std, the heading has failed (a false
-  // course, a mounting the trial missed): the data are aligned again while moving, with at least 4 body
-  // headings (the axis-aligned mountings).
+  // course, a mounting the trial missed), once that has held for heading_failed_for_s on end: the data are
+  // aligned again while moving, with at least 4 body headings (the axis-aligned mountings).
   double heading_failed_rad = 30.0 * kDegToRad;
+  double heading_failed_for_s = 5.0;
 };
 
 class NavSession {
@@ -136,6 +137,7 @@ class NavSession {
   long imu_used_ = 0, gnss_used_ = 0, others_used_ = 0;
   HeadingCheck heading_check_;
   std::deque<GnssFix> fixes_to_check_;  // handed to the filter, not yet to heading_check_
+  std::optional<double> heading_failing_since_s_;
   int realignments_ = 0;
 };
 
