@@ -12,8 +12,9 @@ namespace {
 double wrap_pi(double a) { return std::remainder(a, 2.0 * M_PI); }
 
 // Cumulative heading angle about the vertical sensed by the gyros, at every IMU stamp (piecewise linear).
+// Also its running time integral (area), so that the mean heading over any span costs two look-ups.
 struct HeadingIntegral {
-  std::vector<double> t_s, psi_rad;
+  std::vector<double> t_s, psi_rad, area_rad_s;
   double at(double t) const {
     if (t <= t_s.front()) return psi_rad.front();
     if (t >= t_s.back()) return psi_rad.back();
@@ -21,10 +22,21 @@ struct HeadingIntegral {
     const double a = (t - t_s[i - 1]) / (t_s[i] - t_s[i - 1]);
     return psi_rad[i - 1] + a * (psi_rad[i] - psi_rad[i - 1]);
   }
+  double area(double t) const {
+    if (t <= t_s.front()) return 0.0;
+    if (t >= t_s.back()) return area_rad_s.back();
+    const size_t i = static_cast<size_t>(std::upper_bound(t_s.begin(), t_s.end(), t) - t_s.begin());
+    const double dt = t - t_s[i - 1];
+    return area_rad_s[i - 1] + dt * 0.5 * (psi_rad[i - 1] + at(t));
+  }
+  // The mean heading over [a, b]: what a chord's course over that span sees.
+  double mean(double a, double b) const { return (area(b) - area(a)) / (b - a); }
 };
 
+// The course change between two chords' courses, each the mean heading over its span [a, b].
 struct CourseInterval {
-  double t0_s, t1_s, dchi_rad;
+  double a0_s, b0_s, a1_s, b1_s, dchi_rad;
+  double dt_s() const { return 0.5 * (a1_s + b1_s - a0_s - b0_s); }
 };
 
 }  // namespace
@@ -43,10 +55,13 @@ ImuLatencyEstimate estimate_imu_latency(const std::vector<ImuIncrement>& imu, co
   h.psi_rad.reserve(imu.size() + 1);
   h.t_s.push_back(imu.front().t_s - imu.front().dt_s);
   h.psi_rad.push_back(0.0);
+  h.area_rad_s.push_back(0.0);
   for (const ImuIncrement& s : imu) {
     if (!(s.t_s > h.t_s.back()) || !s.dtheta_b_rad.allFinite()) continue;
+    const double psi = h.psi_rad.back() + s.dtheta_b_rad.dot(down_b);
+    h.area_rad_s.push_back(h.area_rad_s.back() + (s.t_s - h.t_s.back()) * 0.5 * (h.psi_rad.back() + psi));
     h.t_s.push_back(s.t_s);
-    h.psi_rad.push_back(h.psi_rad.back() + s.dtheta_b_rad.dot(down_b));
+    h.psi_rad.push_back(psi);
   }
   // Course at each fix from the chord of its neighbours; course change over consecutive fixes.
   std::vector<double> chi(gnss.size(), NAN);
@@ -63,56 +78,83 @@ ImuLatencyEstimate estimate_imu_latency(const std::vector<ImuIncrement>& imu, co
   std::vector<double> speeds;
   for (size_t k = 1; k + 2 < gnss.size(); ++k) {
     if (std::isnan(chi[k]) || std::isnan(chi[k + 1])) continue;
-    if (gnss[k].t_s - o.max_lag_s < h.t_s.front() || gnss[k + 1].t_s + o.max_lag_s > h.t_s.back()) continue;
-    iv.push_back({gnss[k].t_s, gnss[k + 1].t_s, wrap_pi(chi[k + 1] - chi[k])});
+    if (gnss[k - 1].t_s - o.max_lag_s < h.t_s.front() || gnss[k + 2].t_s + o.max_lag_s > h.t_s.back()) continue;
+    iv.push_back({gnss[k - 1].t_s, gnss[k + 1].t_s, gnss[k].t_s, gnss[k + 2].t_s, wrap_pi(chi[k + 1] - chi[k])});
     speeds.push_back(earth::ned_between(gnss[k].pos, gnss[k + 1].pos).head<2>().norm() /
                      (gnss[k + 1].t_s - gnss[k].t_s));
   }
   out.median_speed_mps = median_in_place(speeds);
   out.intervals = static_cast<int>(iv.size());
   for (const CourseInterval& c : iv)
-    out.turning_intervals += std::abs(c.dchi_rad) / (c.t1_s - c.t0_s) > o.min_turn_rad_s;
+    out.turning_intervals += std::abs(c.dchi_rad) / c.dt_s() > o.min_turn_rad_s;
   if (out.turning_intervals < o.min_intervals) return out;
-  // Misfit at a lag, with the constant gyro bias (rate about the vertical) fitted by least squares.
-  auto misfit = [&](double lag_s) {
-    double sxy = 0, sxx = 0, syy = 0;
-    for (const CourseInterval& c : iv) {
-      const double e = c.dchi_rad - (h.at(c.t1_s + lag_s) - h.at(c.t0_s + lag_s));
-      const double dt = c.t1_s - c.t0_s;
-      sxy += e * dt, sxx += dt * dt, syy += e * e;
+  // Residuals at a lag, with the constant gyro bias (rate about the vertical) fitted by least squares.
+  auto residuals = [&](const std::vector<CourseInterval>& set, double lag_s) {
+    std::vector<double> e(set.size());
+    double sxy = 0, sxx = 0;
+    for (size_t k = 0; k < set.size(); ++k) {
+      const CourseInterval& c = set[k];
+      e[k] = c.dchi_rad - (h.mean(c.a1_s + lag_s, c.b1_s + lag_s) - h.mean(c.a0_s + lag_s, c.b0_s + lag_s));
+      sxy += e[k] * c.dt_s(), sxx += c.dt_s() * c.dt_s();
     }
-    return syy - sxy * sxy / sxx;
+    for (size_t k = 0; k < set.size(); ++k) e[k] -= sxy / sxx * set[k].dt_s();
+    return e;
   };
-  // Coarse grid (10 ms) over the whole range, then 1 ms around its best (the misfit is smooth in the lag).
-  const double coarse_s = 1e-2, step_s = 1e-3;
-  const int n_coarse = static_cast<int>(std::lround(o.max_lag_s / coarse_s));
-  double coarse_best_s = 0.0, coarse_best_cost = misfit(0.0);
-  for (int i = -n_coarse; i <= n_coarse; ++i) {
-    const double c = misfit(i * coarse_s);
-    if (c < coarse_best_cost) coarse_best_cost = c, coarse_best_s = i * coarse_s;
+  auto misfit = [&](const std::vector<CourseInterval>& set, double lag_s) {
+    double cost = 0.0;
+    for (double e : residuals(set, lag_s)) cost += e * e;
+    return cost;
+  };
+  // Coarse grid (10 ms) over the whole range, then 1 ms around its best (the misfit is smooth in the lag:
+  // the chords' mean headings average the gyro noise, which would otherwise make it rough on the scale of
+  // an IMU sample and its curvature there, the sigma, 10x too confident).
+  auto search = [&](const std::vector<CourseInterval>& set, ImuLatencyEstimate& est) {
+    const double coarse_s = 1e-2, step_s = 1e-3;
+    const int n_coarse = static_cast<int>(std::lround(o.max_lag_s / coarse_s));
+    double coarse_best_s = 0.0, coarse_best_cost = misfit(set, 0.0);
+    for (int i = -n_coarse; i <= n_coarse; ++i) {
+      const double c = misfit(set, i * coarse_s);
+      if (c < coarse_best_cost) coarse_best_cost = c, coarse_best_s = i * coarse_s;
+    }
+    if (std::abs(coarse_best_s) >= o.max_lag_s - coarse_s) return false;  // at the edge of the search
+    const int n = 20;                                                    // fine grid: coarse best +- 20 ms
+    std::vector<double> cost(2 * n + 1);
+    int best = 0;
+    for (int i = 0; i <= 2 * n; ++i) {
+      cost[i] = misfit(set, coarse_best_s + (i - n) * step_s);
+      if (cost[i] < cost[best]) best = i;
+    }
+    if (best == 0 || best == 2 * n) return false;
+    // Parabola through the minimum and its neighbours (a few steps apart for a stable curvature).
+    const int w = std::min({5, best, 2 * n - best});
+    const double c0 = cost[best - w], c1 = cost[best], c2 = cost[best + w], hstep = w * step_s;
+    const double curvature = (c0 - 2.0 * c1 + c2) / (hstep * hstep);  // d2 cost / d lag2
+    if (!(curvature > 0.0)) return false;
+    const double offset = 0.5 * hstep * (c0 - c2) / (c0 - 2.0 * c1 + c2);
+    est.lag_s = coarse_best_s + (best - n) * step_s + std::clamp(offset, -hstep, hstep);
+    const double dof = std::max(1.0, static_cast<double>(set.size()) - 2.0);
+    const double residual_var = std::max(misfit(set, est.lag_s), 0.0) / dof;
+    est.residual_rms_rad = std::sqrt(residual_var);
+    // cost = sum e^2: its Hessian is 2 J^T J, so var(lag) = sigma_e^2 (J^T J)^-1 = 2 sigma_e^2 / curvature.
+    est.sigma_s = std::sqrt(2.0 * residual_var / curvature);
+    est.valid = std::isfinite(est.lag_s) && std::isfinite(est.sigma_s);
+    return est.valid;
+  };
+  if (!search(iv, out)) return out;
+  // Again without the course changes a GNSS outlier made (a 2 m jump turns a 0.5 s chord by 20 deg): those
+  // beyond 5 robust sigma of the first fit's residuals.
+  std::vector<double> e = residuals(iv, out.lag_s), abs_e(e.size());
+  for (size_t k = 0; k < e.size(); ++k) abs_e[k] = std::abs(e[k]);
+  const double robust_sigma = 1.4826 * median_in_place(abs_e);
+  std::vector<CourseInterval> kept;
+  for (size_t k = 0; k < iv.size(); ++k)
+    if (std::abs(e[k]) <= 5.0 * robust_sigma) kept.push_back(iv[k]);
+  out.outlier_intervals = static_cast<int>(iv.size() - kept.size());
+  if (kept.size() < iv.size() && static_cast<int>(kept.size()) >= o.min_intervals) {
+    ImuLatencyEstimate again = out;
+    out.valid = search(kept, again);
+    if (out.valid) out = again;
   }
-  if (std::abs(coarse_best_s) >= o.max_lag_s - coarse_s) return out;  // at the edge of the search: not a minimum
-  const int n = 20;                                                   // fine grid: coarse best +- 20 ms
-  std::vector<double> cost(2 * n + 1);
-  int best = 0;
-  for (int i = 0; i <= 2 * n; ++i) {
-    cost[i] = misfit(coarse_best_s + (i - n) * step_s);
-    if (cost[i] < cost[best]) best = i;
-  }
-  if (best == 0 || best == 2 * n) return out;
-  // Parabola through the minimum and its neighbours (a few steps apart for a stable curvature).
-  const int w = std::min({5, best, 2 * n - best});
-  const double c0 = cost[best - w], c1 = cost[best], c2 = cost[best + w], hstep = w * step_s;
-  const double curvature = (c0 - 2.0 * c1 + c2) / (hstep * hstep);  // d2 cost / d lag2
-  if (!(curvature > 0.0)) return out;
-  const double offset = 0.5 * hstep * (c0 - c2) / (c0 - 2.0 * c1 + c2);
-  out.lag_s = coarse_best_s + (best - n) * step_s + std::clamp(offset, -hstep, hstep);
-  const double dof = std::max(1.0, static_cast<double>(iv.size()) - 2.0);
-  const double residual_var = std::max(misfit(out.lag_s), 0.0) / dof;
-  out.residual_rms_rad = std::sqrt(residual_var);
-  // cost = sum e^2: its Hessian is 2 J^T J, so var(lag) = sigma_e^2 (J^T J)^-1 = 2 sigma_e^2 / curvature.
-  out.sigma_s = std::sqrt(2.0 * residual_var / curvature);
-  out.valid = std::isfinite(out.lag_s) && std::isfinite(out.sigma_s);
   return out;
 }
 

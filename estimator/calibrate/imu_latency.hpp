@@ -4,12 +4,16 @@
 // buffers are tagged on arrival, hundreds of milliseconds late; a filter that integrates them at the
 // wrong time sees every turn as a lever-arm or heading error and leaves the RTK.
 //
-// Method: the vertical is the mean specific force over the file (any mounting, upside down included);
-// the IMU's heading change over each GNSS interval [t_k, t_k+1] is the integral of the gyro rate about
-// it between t_k + lag and t_k+1 + lag; the GNSS course change is taken from the track (chords of
-// consecutive fixes). The lag minimises the squared misfit with a constant gyro bias fitted alongside
-// (10 ms grid, then 1 ms around its best, parabolic refinement); sigma from the misfit's curvature and
-// residual scatter.
+// Method: the vertical is the mean specific force over the file (any mounting, upside down included). The
+// GNSS course at fix k is the chord from fix k-1 to k+1, i.e. the mean heading over that span; the IMU's
+// heading about the vertical is averaged over the same span shifted by the lag, and the course changes
+// between consecutive fixes are compared. (Matching the spans keeps turns of any shape consistent and the
+// misfit smooth in the lag: with the IMU's heading read at the fix epochs, a MEMS gyro vibrating at 10x its
+// datasheet noise made it rough at the scale of an IMU sample, its minimum off by 50-350 ms at a sigma of a
+// few ms.) The lag minimises the squared misfit with a constant gyro bias fitted alongside (10 ms grid,
+// then 1 ms around its best, parabolic refinement); sigma from the misfit's curvature and residual scatter.
+// The course changes a GNSS outlier made (beyond 5 robust sigma of the first fit's residuals) are left out
+// and the search is run again.
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -31,6 +35,7 @@ struct ImuLatencyEstimate {
   double sigma_s = 0.0;  // 1-sigma
   int intervals = 0;     // GNSS intervals used
   int turning_intervals = 0;
+  int outlier_intervals = 0;  // left out of the second search
   double residual_rms_rad = 0.0;  // heading-change misfit at the optimum
   double median_speed_mps = 0.0;  // over the intervals used
   // The antenna's forward lever arm l_x shifts the track's course by w l_x / v, which this estimate
