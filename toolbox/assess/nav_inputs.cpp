@@ -1,6 +1,7 @@
 #include "toolbox/assess/nav_inputs.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
@@ -149,6 +150,39 @@ void load_odometer(const NavInputArgs& a, NavInputs& in) {
   in.description += " + " + path;
 }
 
+std::vector<ImuIncrement> shifted(std::vector<ImuIncrement> imu, double lag_s) {
+  for (ImuIncrement& s : imu) s.t_s -= lag_s;
+  return imu;
+}
+
+// How much IMU noise the filter needs to follow the fixes over these IMU samples: the geometric mean over the
+// run of the adapted noise scale (FilterOptions::adapt_imu_noise holds the position NIS at its expectation, so
+// a model that misses something shows as noise). Positions only (a GNSS velocity's own lag would take sides);
+// a run that cannot start counts as the largest scale.
+double imu_noise_needed(const NavInputs& in, const std::vector<ImuIncrement>& imu) {
+  est::FilterOptions o = in.options;
+  o.use_gnss_velocity = false;
+  o.adapt_imu_noise = true;
+  est::NavFilter filter(o);
+  double sum_log = 0.0;
+  long n = 0;
+  est::RunCallbacks cb;
+  cb.on_epoch = [&](const est::NavFilter& f) {
+    sum_log += std::log(f.imu_noise_scale());
+    ++n;
+  };
+  try {
+    est::run_navigation(imu, in.gnss, in.config, filter, cb);
+  } catch (const std::exception&) {
+    return 1e300;
+  }
+  return n > 0 ? std::exp(sum_log / static_cast<double>(n)) : 1e300;
+}
+
+// A lag within what a forward lever arm could explain is taken when the filter needs this much less IMU noise
+// with it (a 1.5 m lever arm at 10 m/s taken for 150 ms would make the fit worse, not better).
+constexpr double kLagNoiseGain = 0.7;
+
 // IMU stamps late against GNSS time (a consumer IMU behind a USB or serial buffer): found from the data
 // and taken out before the filter sees them, unless the user set the shift or asked for KF-GINS's behaviour.
 void estimate_and_remove_imu_latency(const NavInputArgs& a, bool shift_given, NavInputs& in) {
@@ -176,16 +210,25 @@ void estimate_and_remove_imu_latency(const NavInputArgs& a, bool shift_given, Na
   if (!e.valid) {
     std::snprintf(note, sizeof note, "; IMU latency not estimated (%d turning GNSS intervals)", e.turning_intervals);
   } else if (e.significant()) {
-    for (ImuIncrement& s : in.imu) s.t_s -= e.lag_s;
+    in.imu = shifted(in.imu, e.lag_s);
     in.imu_latency_applied = true;
     std::snprintf(note, sizeof note, "; IMU stamps late by %.1f +- %.1f ms (found from the turns, taken out)",
                   1e3 * e.lag_s, 1e3 * e.sigma_s);
   } else if (std::abs(e.lag_s) > 3.0 * e.sigma_s && e.sigma_s < 0.02) {
+    // A lag or a forward lever arm: the filter over the whole file decides, with and without the lag.
+    const double noise_without = imu_noise_needed(in, in.imu);
+    const double noise_with = imu_noise_needed(in, shifted(in.imu, e.lag_s));
+    const bool take = noise_with < kLagNoiseGain * noise_without;
+    if (take) {
+      in.imu = shifted(in.imu, e.lag_s);
+      in.imu_latency_applied = true;
+    }
     std::snprintf(note, sizeof note,
                   "; IMU latency %.1f +- %.1f ms: within what a forward antenna lever arm of %.1f m explains at %.1f m/s "
-                  "(%.0f ms), not applied (the time_offset effect can estimate it)",
+                  "(%.0f ms); the filter needs %.3gx the IMU noise with it, %.3gx without: %s",
                   1e3 * e.lag_s, 1e3 * e.sigma_s, est::ImuLatencyEstimate::kMaxLeverArmAlong_m, e.median_speed_mps,
-                  1e3 * e.lever_arm_equivalent_lag_s());
+                  1e3 * e.lever_arm_equivalent_lag_s(), noise_with, noise_without,
+                  take ? "a lag, taken out" : "not applied (the time_offset and lever_arm effects can estimate it)");
   } else {
     std::snprintf(note, sizeof note, "; IMU latency %.1f +- %.1f ms (not significant, not applied)", 1e3 * e.lag_s,
                   1e3 * e.sigma_s);
