@@ -152,8 +152,7 @@ ImuLatencyEstimate estimate_imu_latency(const std::vector<ImuIncrement>& imu, co
   out.outlier_intervals = static_cast<int>(iv.size() - kept.size());
   if (kept.size() < iv.size() && static_cast<int>(kept.size()) >= o.min_intervals) {
     ImuLatencyEstimate again = out;
-    out.valid = search(kept, again);
-    if (out.valid) out = again;
+    if (search(kept, again)) out = again;  // else the first estimate stands
   }
   return out;
 }

@@ -35,7 +35,8 @@ void Aligner::add_imu(const ImuIncrement& raw) {
   if (!moving_seen_) {
     // Accumulate from the start until the first motion (the detector needs one full window first).
     const bool window_full = static_s_ >= 0.6;
-    if (o_.gnss_checks && window_full && !stat) {
+    if (o_.gnss_checks && window_full && (!stat || gnss_moving_)) {
+      // Moving by the IMU, or by the GNSS while the IMU looks still (a smooth acceleration or cruise).
       hold_until_gnss_says(raw);
     } else if (window_full && !stat) {
       moving_seen_ = true;
@@ -72,6 +73,13 @@ void Aligner::carry_attitude(const ImuIncrement& raw) {
   q_b_l_ = (q_b_l_ * quat_from_rotvec(dtheta)).normalized();
 }
 
+void Aligner::release_held() {
+  moving_seen_ = true;
+  level();  // again, from the whole standstill (an early levelling had its first static_min_s only)
+  for (const ImuIncrement& held : held_) carry_attitude(held);
+  held_.clear();
+}
+
 void Aligner::hold_until_gnss_says(const ImuIncrement& raw) {
   // The IMU says moving. An installed IMU vibrates above the datasheet noise the detector expects, so the
   // samples are held until the GNSS decides: motion (two chords that agree) -> the motion began with the
@@ -79,11 +87,8 @@ void Aligner::hold_until_gnss_says(const ImuIncrement& raw) {
   held_.push_back(raw);
   const bool gnss_silent = t_s_ - std::max(last_fix_t_s_, first_imu_t_s_) > kGnssSilent_s;
   if (gnss_moving_ || gnss_silent) {
-    moving_seen_ = true;
-    level();  // again, from the whole standstill (an early levelling had its first static_min_s only)
-    for (const ImuIncrement& held : held_) carry_attitude(held);  // this sample is the last of them
-    just_moved_ = true;
-    held_.clear();
+    release_held();
+    just_moved_ = true;  // this sample was the last of them
     return;
   }
   while (!held_.empty() && held_.front().t_s < t_s_ - kHoldMax_s) {
@@ -126,6 +131,12 @@ void Aligner::add_gnss(const GnssFix& fix) {
   constexpr double kWalkingPace_mps = 0.5;
   gnss_moving_ = chord && chord_before && chords_agree(*chord_before, *chord, kWalkingPace_mps);
   if (result_ || !levelled_) return;
+  // Samples held for the GNSS to decide: motion now confirmed, the attitude is carried through them first;
+  // otherwise no alignment until it is (the attitude would miss their rotation).
+  if (!held_.empty()) {
+    if (!gnss_moving_) return;
+    release_held();
+  }
 
   NavState s;
   s.t_s = t_s_;

@@ -73,6 +73,7 @@ class Aligner {
   void add_static(const ImuIncrement& raw);
   void carry_attitude(const ImuIncrement& raw);
   void hold_until_gnss_says(const ImuIncrement& raw);
+  void release_held();  // motion confirmed: level from the whole standstill, carry the held samples' rotation
   // A chord between consecutive fixes that goes on in the previous chord's direction at a similar speed.
   bool chords_agree(const Vec3& previous_mps, const Vec3& chord_mps, double speed_min_mps) const;
   static constexpr double kGnssSilent_s = 3.0;

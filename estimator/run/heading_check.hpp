@@ -25,7 +25,8 @@ class HeadingCheck {
   void add_imu(const Vec3& dv_n_mps) { dv_since_fix_ += dv_n_mps.head<2>(); }
   // A GNSS fix, in time order, between the IMU samples it falls between.
   void add_fix(const GnssFix& fix);
-  // The rotation from the GNSS's velocity changes to the IMU's over the window [rad] (~ -heading error), when
+  // The rotation from the GNSS's velocity changes to the IMU's over the window [rad] (~ the navigated heading
+  // minus the true one: the correction is a turn by minus this), when
   // the window's velocity changes stand out of the chord noise by a factor of 5; else none.
   std::optional<double> heading_misfit_rad() const;
   void clear();

@@ -81,6 +81,7 @@ void NavSession::add_imu(const ImuIncrement& imu, int week, double arrival_s) {
 }
 
 void NavSession::add_gnss(const GnssFix& fix, double arrival_s) {
+  latest_gnss_t_s_ = std::max(latest_gnss_t_s_, fix.t_s);  // also while navigating: an alignment may be redone
   if (navigating()) {
     if (fix.t_s <= started_at_s_) return;  // before the initial epoch: not used, however late it arrives
     insert_in_time_order(gnss_queue_, fix, fix.t_s);
@@ -89,7 +90,6 @@ void NavSession::add_gnss(const GnssFix& fix, double arrival_s) {
   }
   if (warm_ && !warm_fix_) warm_fix_ = fix;
   insert_in_time_order(gnss_queue_, fix, fix.t_s);
-  latest_gnss_t_s_ = std::max(latest_gnss_t_s_, fix.t_s);
   (void)arrival_s;  // the queue waits on the IMU's arrival (drain_alignment_queue)
 }
 
@@ -149,8 +149,14 @@ void NavSession::realign(double misfit_rad) {
   const NavState lost = filter_.state();
   const NavStd lost_std = filter_.nav_std();
   heading_check_.clear();
+  // Fixes already handed to the filter beyond this epoch go back to the queue, for the new alignment.
+  for (const GnssFix& f : fixes_to_check_)
+    if (f.t_s > lost.t_s) insert_in_time_order(gnss_queue_, f, f.t_s);
   fixes_to_check_.clear();
   heading_failing_since_s_.reset();
+  warm_.reset();  // neither a given nor a saved state holds any more
+  warm_fix_.reset();
+  o_.given_start.reset();
   ++realignments_;
   filter_.restart();
   // Aligned again from here on: the level the filter held (tilt shows in every fix, unlike heading), the
@@ -382,7 +388,15 @@ void NavSession::start(const NavState& s, const NavStd& sd, const std::string& h
 void NavSession::release_backlog() {
   std::deque<QueuedImu> rest;
   rest.swap(imu_queue_);
-  for (const QueuedImu& q : rest) navigate(q.imu, q.week);
+  while (!rest.empty()) {
+    if (!navigating()) {  // the heading failed on the way (realign): the rest goes to the new alignment
+      imu_queue_.insert(imu_queue_.begin(), rest.begin(), rest.end());
+      drain_alignment_queue(rest.back().arrival_s, false);
+      return;
+    }
+    navigate(rest.front().imu, rest.front().week);
+    rest.pop_front();
+  }
 }
 
 }  // namespace ldv::est

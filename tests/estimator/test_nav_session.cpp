@@ -164,6 +164,31 @@ TEST(NavSession, GivenAnAlignmentThatFailed_WhenTheFilterLeavesTheGnss_ThenItIsA
   EXPECT_LT(earth::ned_between(end.pos, truth.pos).head<2>().norm(), 0.5);
 }
 
+TEST(NavSession, GivenAnImuMountedSideways_WhenFourHeadingsAreTried_ThenTheAccelerationsPickTheRightOne) {
+  // 90 deg, not 180: a sign error in the heading found from the accelerations would pick 270 and end 180 off.
+  for (const double mount_yaw_deg : {90.0, -90.0}) {
+    sim::SimRequest req;
+    req.grade = "3dm-gx2";
+    req.scenario = "drive";
+    req.duration_s = 150.0;
+    req.gnss_rate_hz = 5.0;
+    req.seed = 11;
+    req.vehicle.mounting_rpy_deg = Vec3(0.0, 0.0, mount_yaw_deg);
+    const sim::SimResult sim = sim::simulate(req);
+    KfGinsConfig cfg = datasheet_config(sim);
+    cfg.ldv["align_hypotheses"] = 4;
+    const FilterOptions fo = options_from_kfgins(cfg);
+    NavFilter filter(fo);
+    const RunSummary sum = run_navigation(sim.imu, sim.gnss, cfg, filter, {});
+    EXPECT_NE(sum.initialisation.find("by the accelerations"), std::string::npos) << sum.initialisation;
+    EXPECT_EQ(sum.initialisation.find("aligned again"), std::string::npos) << sum.initialisation;
+    const NavState& end = filter.state();
+    EXPECT_LT(std::abs(std::remainder(end.rpy_rad().z() - truth_at(sim, end.t_s).rpy_rad.z(), 2 * kPi)) * kRadToDeg,
+              2.0)
+        << mount_yaw_deg;
+  }
+}
+
 TEST(NavSession, GivenARightAlignment_WhenTheGnssGoesAwayForAMinute_ThenNoRedo) {
   // A long outage: the filter drifts and re-synchronises on the GNSS's return; its heading held.
   const sim::SimResult sim = backwards_mems_drive();
