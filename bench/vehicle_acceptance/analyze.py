@@ -19,7 +19,7 @@ res["rc"] = int(rd("nav.rc").strip() or -99)
 res["wall_s"] = float(rd("nav.wall").strip() or "nan")
 # --- summary-line parsing
 m = re.search(r"IMU (?:stamps late by|latency) ([-\d.]+) \+- ([\d.]+) ms([^)]*\)?)", err)
-res["lat_applied"] = bool(m) and "taken out" in m.group(0)
+res["lat_applied"] = bool(re.search(r"found from the turns, taken out|a lag, taken out", err))
 res["lat_found_ms"] = float(m.group(1)) if m else None
 res["lat_sig_ms"] = float(m.group(2)) if m else None
 res["lat_text"] = (m.group(0) if m else (re.search(r"IMU stamps[^;)]*", err).group(0) if re.search(r"IMU stamps[^;)]*", err) else ""))
