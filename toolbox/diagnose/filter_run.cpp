@@ -12,6 +12,7 @@ double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC
 FilterRun run_filter(const DiagnoseInputs& in, const est::FilterOptions& options, const CandidateSet* candidates) {
   const double cpu0 = cpu_seconds();
   FilterRun run;
+  run.gate_probability = options.gate_probability;
   est::NavFilter filter(options);
   for (const auto& b : filter.layout().blocks()) run.effects.push_back(b.effect->name());
   std::unique_ptr<SensitivityObserver> observer;

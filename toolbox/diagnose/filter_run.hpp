@@ -47,6 +47,7 @@ struct FilterRun {
   std::vector<EpochSample> epochs;   // 10 Hz
   std::vector<EffectEstimate> estimates;
   est::RunSummary summary;
+  double gate_probability = 0.9999;  // the run's chi-square gate (opened when the model rejected too much)
   double cpu_s = 0.0;
 };
 

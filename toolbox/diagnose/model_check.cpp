@@ -11,8 +11,6 @@
 namespace ldv::diag {
 namespace {
 
-constexpr double kNisCapProbability = 0.9999;  // est::FilterOptions::gate_probability's default
-
 // Band for the mean of n_eff values each distributed as chi-square(dof)/dof*expected.
 Band mean_band(double value, double expected, double dof, double n_eff, double confidence) {
   Band b;
@@ -91,13 +89,13 @@ ModelCheck check_model(const FilterRun& run, const std::vector<Segment>& labels,
     sc.count = static_cast<int>(rs.size());
     if (kind == est::sensors::kGnssPosition && rs.size() > 1)
       mc.measurement_interval_s = (rs.back()->t_s - rs.front()->t_s) / (rs.size() - 1);
-    // NIS and per-axis NIS each capped at the chi-square gate of its rows (the filter's default gate): a
+    // NIS and per-axis NIS each capped at the chi-square gate of its rows (the run's own gate): a
     // rejected outlier weighs as much as a measurement just at the gate, not its NIS of 10^4 (one 2 m jump
     // among 1000 RTK fixes would otherwise lift the mean by ~10 and hide whether the model fits the rest),
     // while a filter that left the measurements still shows a mean near the gate. The RMS is over the
     // measurements used (rejections are counted apart); whiteness over all of them, in time order.
-    const double nis_cap = math::chi_square_quantile(kNisCapProbability, rows),
-                 axis_cap = math::chi_square_quantile(kNisCapProbability, 1);
+    const double nis_cap = math::chi_square_quantile(run.gate_probability, rows),
+                 axis_cap = math::chi_square_quantile(run.gate_probability, 1);
     std::vector<Eigen::VectorXd> w;  // normalised innovations nu_i / sqrt(S_ii)
     double nis_sum = 0.0;
     Eigen::VectorXd axis_sum = Eigen::VectorXd::Zero(rows), sq = Eigen::VectorXd::Zero(rows);
@@ -113,7 +111,9 @@ ModelCheck check_model(const FilterRun& run, const std::vector<Segment>& labels,
       sq += r->innovation.cwiseAbs2();
     }
     const double n = sc.count;
-    sc.rms = (sq / std::max(1, sc.count - sc.rejected)).cwiseSqrt();
+    // Every measurement rejected: no RMS of the used ones (NaN), not a misleading 0.
+    sc.rms = sc.rejected < sc.count ? Eigen::VectorXd((sq / (sc.count - sc.rejected)).cwiseSqrt())
+                                    : Eigen::VectorXd::Constant(rows, NAN);
     // Whiteness: autocorrelation, Ljung-Box over h lags, integrated correlation time with Sokal's window.
     const int max_lag = std::min(sc.count / 4, 200);
     sc.autocorrelation = autocorrelation(w, max_lag);
