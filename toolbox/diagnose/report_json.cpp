@@ -67,7 +67,9 @@ std::string check_json(const ModelCheck& mc) {
                 return "{\"segment\": " + str(segment_name(g.segment)) + ", \"count\": " + std::to_string(g.count) +
                        ", \"mean_nis\": " + num(g.mean_nis.value) +
                        ", \"ok\": " + (g.mean_nis.ok() ? "true" : "false") +
-                       ", \"rms\": " + list(3, [&](size_t a) { return num(g.rms(a)); }) + "}";
+                       ", \"rms\": " +
+                       list(static_cast<size_t>(g.rms.size()), [&](size_t a) { return num(g.rms(static_cast<int>(a))); }) +
+                       "}";
               })
       << "}";
     return o.str();
