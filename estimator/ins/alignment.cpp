@@ -131,12 +131,10 @@ void Aligner::add_gnss(const GnssFix& fix) {
   constexpr double kWalkingPace_mps = 0.5;
   gnss_moving_ = chord && chord_before && chords_agree(*chord_before, *chord, kWalkingPace_mps);
   if (result_ || !levelled_) return;
-  // Samples held for the GNSS to decide: motion now confirmed, the attitude is carried through them first;
-  // otherwise no alignment until it is (the attitude would miss their rotation).
-  if (!held_.empty()) {
-    if (!gnss_moving_) return;
-    release_held();
-  }
+  // Samples held for the GNSS to decide: motion now confirmed, the attitude is carried through them first.
+  // Still held (no motion yet), only gyrocompassing may align (at rest they are vibration); a course would miss
+  // their rotation.
+  if (!held_.empty() && gnss_moving_) release_held();
 
   NavState s;
   s.t_s = t_s_;
@@ -153,6 +151,7 @@ void Aligner::add_gnss(const GnssFix& fix) {
     sd.att_rad = Vec3(level_std_rad_.x(), level_std_rad_.y(), 2.0 * yaw_std);
     method_ = "levelling + gyrocompassing";
   } else {
+    if (!held_.empty()) return;
     // Course over ground, from the fix's velocity or from consecutive positions.
     Vec3 v_n;
     double v_std = 0.0;
