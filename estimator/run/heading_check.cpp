@@ -33,6 +33,7 @@ void HeadingCheck::add_fix(const GnssFix& fix) {
     if (size_misfit <= 3.0 * p.gnss_std_mps + kSizeTolerance_mps) pairs_.push_back(p);
   }
   while (!pairs_.empty() && pairs_.front().t_s < fix.t_s - window_s_) pairs_.pop_front();
+  misfit_rad_ = fit_pairs();
   last_fix_ = fix;
   last_chord_mps_ = chord;
   last_chord_std_mps_ = chord_std;
@@ -40,7 +41,7 @@ void HeadingCheck::add_fix(const GnssFix& fix) {
   dv_since_fix_.setZero();
 }
 
-std::optional<double> HeadingCheck::heading_misfit_rad() const {
+std::optional<double> HeadingCheck::fit_pairs() const {
   // Least squares rotation of g onto a: angle of sum (a . g, g x a); its noise from the chords' std.
   // The GNSS's velocity changes must be real accelerations (25x their noise in power: not a standstill's
   // chord noise against an IMU's vibration), and the fit must stand out of that noise.

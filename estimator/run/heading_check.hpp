@@ -28,7 +28,7 @@ class HeadingCheck {
   // The rotation from the GNSS's velocity changes to the IMU's over the window [rad] (~ the navigated heading
   // minus the true one: the correction is a turn by minus this), when
   // the window's velocity changes stand out of the chord noise by a factor of 5; else none.
-  std::optional<double> heading_misfit_rad() const;
+  std::optional<double> heading_misfit_rad() const { return misfit_rad_; }
   void clear();
 
  private:
@@ -43,6 +43,8 @@ class HeadingCheck {
   std::optional<Eigen::Vector2d> last_chord_mps_, last_dv_imu_mps_;  // over the interval ending at last_fix_
   double last_chord_std_mps_ = 0.0;
   std::deque<Pair> pairs_;
+  std::optional<double> misfit_rad_;  // of pairs_, refreshed when they change (asked after every IMU sample)
+  std::optional<double> fit_pairs() const;
 };
 
 }  // namespace ldv::est

@@ -217,10 +217,11 @@ void estimate_and_remove_imu_latency(const NavInputArgs& a, bool shift_given, Na
   } else if (std::abs(e.lag_s) > 3.0 * e.sigma_s && e.sigma_s < 0.02) {
     // A lag or a forward lever arm: the filter over the whole file decides, with and without the lag.
     const double noise_without = imu_noise_needed(in, in.imu);
-    const double noise_with = imu_noise_needed(in, shifted(in.imu, e.lag_s));
+    std::vector<ImuIncrement> lagged = shifted(in.imu, e.lag_s);
+    const double noise_with = imu_noise_needed(in, lagged);
     const bool take = noise_with < kLagNoiseGain * noise_without;
     if (take) {
-      in.imu = shifted(in.imu, e.lag_s);
+      in.imu = std::move(lagged);
       in.imu_latency_applied = true;
     }
     std::snprintf(note, sizeof note,
