@@ -50,19 +50,22 @@ void NavSession::add_imu(const ImuIncrement& imu, int week, double arrival_s) {
   latest_imu_seen_t_s_ = std::max(latest_imu_seen_t_s_, imu.t_s);
   latest_imu_arrival_s_ = arrival_s;
   if (imu.t_s < o_.start_time_s || imu.t_s > o_.end_time_s) {
-    if (!navigating()) drain_alignment_queue(arrival_s, false);
+    if (given_pending_)
+      decide_late_given_start(arrival_s, false);
+    else if (!navigating())
+      drain_alignment_queue(arrival_s, false);
     return;
   }
   if (navigating()) {
     navigate(imu, week);
     return;
   }
-  if (o_.given_start && imu.t_s - o_.start_time_s > o_.given_start_max_gap_s) {
-    char b[160];
-    std::snprintf(b, sizeof b, "the given state holds at %.3f s, the data start at %.3f s: aligned instead; ",
-                  o_.start_time_s, imu.t_s);
-    given_note_ = b;
-    o_.given_start.reset();
+  if (o_.given_start && (given_pending_ || imu.t_s - o_.start_time_s > o_.given_start_max_gap_s)) {
+    // The data start later than the given state holds: it still holds if the vehicle has not moved.
+    given_pending_ = true;
+    imu_queue_.push_back({imu, week, arrival_s});
+    decide_late_given_start(arrival_s, false);
+    return;
   }
   if (o_.given_start) {
     NavState s = o_.given_start->first;
@@ -103,11 +106,53 @@ void NavSession::add_observation(ObservationPtr reading, double arrival_s) {
 }
 
 void NavSession::idle(double now_s) {
-  if (!navigating()) drain_alignment_queue(now_s, false);
+  if (given_pending_) decide_late_given_start(now_s, false);
+  if (!navigating() && !given_pending_) drain_alignment_queue(now_s, false);
 }
 
 void NavSession::finish() {
+  if (given_pending_) decide_late_given_start(1e300, true);
   if (!navigating()) drain_alignment_queue(1e300, true);
+}
+
+void NavSession::decide_late_given_start(double now_s, bool at_end) {
+  // The GNSS decides: two consecutive fixes from the data's start on (up to 1 s before it), at walking pace
+  // or less, the first within kGivenStillThere_m of the given position (plus 3 sigma of it): the vehicle is
+  // where the given state left it, which then holds (attitude included: it has not moved). Else aligned.
+  const double t0 = imu_queue_.front().imu.t_s;
+  auto first = std::lower_bound(gnss_queue_.begin(), gnss_queue_.end(), t0 - 1.0,
+                                [](const GnssFix& g, double t) { return g.t_s < t; });
+  const bool two_fixes = first != gnss_queue_.end() && std::next(first) != gnss_queue_.end();
+  const bool waited_long = now_s - imu_queue_.front().arrival_s > 3.0 * o_.align_wait_s;
+  if (!two_fixes && !at_end && !waited_long) return;
+  const auto& [given, given_std] = *o_.given_start;
+  bool still_there = false;
+  double distance_m = -1.0, speed_mps = -1.0;
+  if (two_fixes) {
+    const GnssFix& a = *first;
+    const GnssFix& b = *std::next(first);
+    distance_m = earth::ned_between(given.pos, a.pos).norm();
+    speed_mps = b.t_s > a.t_s ? earth::ned_between(a.pos, b.pos).norm() / (b.t_s - a.t_s) : 1e9;
+    still_there = given.v_n_mps.norm() < kSlowCourseSpeed_mps && speed_mps < kSlowCourseSpeed_mps &&
+                  distance_m < kGivenStillThere_m + 3.0 * given_std.pos_ned_m.norm();
+  }
+  char b[240];
+  std::snprintf(b, sizeof b,
+                "the given state holds at %.3f s, the data start at %.3f s: the GNSS shows the vehicle %s (%.2f m "
+                "from it, %.2f m/s): %s",
+                o_.start_time_s, t0, still_there ? "still there" : "elsewhere or moving", distance_m, speed_mps,
+                still_there ? "" : "aligned instead; ");
+  given_note_ = b;
+  given_pending_ = false;
+  if (!still_there) {
+    o_.given_start.reset();
+    drain_alignment_queue(now_s, at_end);
+    return;
+  }
+  NavState s = given;
+  s.t_s = t0 - imu_queue_.front().imu.dt_s;
+  start(s, given_std, "given", std::nullopt);
+  release_backlog();
 }
 
 void NavSession::hand_over_readings(double up_to_s) {

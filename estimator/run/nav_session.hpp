@@ -29,8 +29,9 @@ struct SessionOptions {
   FilterOptions filter;
   AlignmentOptions alignment;
   // A given start (its t_s is set by the session); else the data are aligned. It holds at start_time_s: when
-  // the first IMU sample comes more than given_start_max_gap_s later (a live stream joined late), the data
-  // are aligned instead, and initialisation() says so.
+  // the first IMU sample comes more than given_start_max_gap_s later (a live stream joined late, a log cut
+  // at the PPS lock), it still holds if the GNSS shows the vehicle at rest where it was given; else the data
+  // are aligned instead. initialisation() says which.
   std::optional<std::pair<NavState, NavStd>> given_start;
   double given_start_max_gap_s = 1.0;
   double start_time_s = -1e300, end_time_s = 1e300;  // IMU samples outside are not used
@@ -56,6 +57,8 @@ class NavSession {
   using EpochSink = std::function<void(const NavFilter&, int gps_week)>;
   static constexpr double kLookahead_s = 0.5;  // readings are handed to the filter this far ahead of the IMU
   static constexpr double kSlowCourseSpeed_mps = 0.5;
+  // How far the first fix may be from a given position that still holds (an antenna lever arm not configured).
+  static constexpr double kGivenStillThere_m = 3.0;
 
   // Drives `filter` (the caller keeps it: its observer, its results after the run).
   NavSession(SessionOptions options, NavFilter& filter, EpochSink on_epoch);
@@ -100,6 +103,7 @@ class NavSession {
     Vec3 gyro_bias_seed = Vec3::Zero();
   };
   void drain_alignment_queue(double now_s, bool at_end);
+  void decide_late_given_start(double now_s, bool at_end);
   AlignmentOptions slow_course_options() const;
   void take_slow_course_alignment();
   bool heading_trial_ready(double now_s, bool at_end) const;
@@ -132,6 +136,7 @@ class NavSession {
   std::optional<std::pair<NavState, NavStd>> warm_;
   std::optional<GnssFix> warm_fix_;
   std::string initialisation_, given_note_, redo_note_;
+  bool given_pending_ = false;  // the data started after the given state's time: the GNSS decides
   Vec3 gyro_bias_seed_rad_s_ = Vec3::Zero();
   double started_at_s_ = 0.0, imu_noise_scale_at_start_ = 1.0;
   long imu_used_ = 0, gnss_used_ = 0, others_used_ = 0;
