@@ -112,6 +112,7 @@ void NavFilter::initialize(const NavState& s, const NavStd& std) {
   snapshots_.clear();
   imu_history_.clear();
   if (opt_.history_s > 0.0) snapshots_.push_back(c_);  // a fix at the initial epoch may still arrive late
+  announce_restart();
 }
 
 void NavFilter::rebuild_error_model() {
@@ -241,6 +242,7 @@ void NavFilter::process_imu(const ImuIncrement& raw) {
     c_.P *= 4.0;
     c_.status = bits | kStatusStateReset;
     ++faults_.state_resets;
+    announce_restart();
     return;
   }
   if (c_.nav.t_s - c_.last_health_t_s >= kHealthPeriod_s) check_health(true);
@@ -499,6 +501,7 @@ void NavFilter::apply_measurement(const Measurement& m) {
   rec.t_s = c_.nav.t_s;
   rec.replayed = replaying_;
   const bool want = observer_.p && observer_.p->wants_matrices();
+  const Eigen::VectorXd var_before = (force && want) ? Eigen::VectorXd(c_.P.diagonal()) : Eigen::VectorXd();
   if (force) {
     // Re-synchronise: the state has diverged from a measurement stream it kept rejecting, so open the
     // measured block's variance by the innovation before accepting.
@@ -512,6 +515,10 @@ void NavFilter::apply_measurement(const Measurement& m) {
       const double tilt_rad = std::min(2.0 * m.y.head<2>().norm() / (earth::kStandardGravity_mps2 * T * T), 0.1);
       c_.P(kAtt, kAtt) += tilt_rad * tilt_rad;
       c_.P(kAtt + 1, kAtt + 1) += tilt_rad * tilt_rad;
+    }
+    if (want) {  // to an observer, the opened variance is process noise of an instant
+      const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(c_.P.rows(), c_.P.cols());
+      observer_.p->on_propagation(c_.nav.t_s, 0.0, I, Eigen::MatrixXd((c_.P.diagonal() - var_before).asDiagonal()));
     }
   }
   const bool ok = kalman_update(c_.P, m, {gate, opt_.robust_update, force}, rec, dx_, want ? &K_ : nullptr);
@@ -594,12 +601,18 @@ void NavFilter::reset_covariance() {
   c_.P = var.asDiagonal();
   c_.status |= kStatusCovarianceReset;
   ++faults_.covariance_resets;
+  announce_restart();
+}
+
+void NavFilter::announce_restart() {
+  if (observer_.p && observer_.p->wants_matrices()) observer_.p->on_restart(c_.nav.t_s, c_.P);
 }
 
 void NavFilter::set_covariance(const Eigen::MatrixXd& P) {
   const int n = kNavDim + m_;
   if (P.rows() != n || P.cols() != n) throw std::invalid_argument("covariance of the wrong size");
   c_.P = P;
+  announce_restart();
   check_health(true);
 }
 

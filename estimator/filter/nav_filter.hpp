@@ -134,6 +134,7 @@ class NavFilter {
   void rebuild_error_model();
   void check_health(bool full);
   void reset_covariance();
+  void announce_restart();  // to the observer: the covariance does not follow from the one before
   void take_snapshot();
   void rewind_and_apply(const Event& event);
 
