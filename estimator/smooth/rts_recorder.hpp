@@ -34,6 +34,7 @@ class SmoothedRun {
  public:
   SmoothedRun(std::vector<SmoothedEpoch> epochs, std::vector<std::pair<int, NavState>> rows);
   std::size_t size() const { return rows_.size(); }
+  double t_s(std::size_t i) const { return rows_[i].second.t_s; }
   SmoothedRow row(std::size_t i) const;
   const std::vector<SmoothedEpoch>& epochs() const { return epochs_; }
 

@@ -122,6 +122,31 @@ OutageResult rerun_with_outage(const std::vector<ImuIncrement>& imu, const std::
   return tracker.finish(f);
 }
 
+// Per outage length, one smoothed run with all of that length's gaps cut (they do not overlap: recovery_s
+// apart); lengths in parallel.
+void smooth_outages(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss, const KfGinsConfig& cfg,
+                    const est::FilterOptions& fo, const std::vector<OutageWindow>& plan, const NavSeries& reference,
+                    const OutageRunOptions& o, std::vector<OutageResult>& results) {
+  std::map<double, std::vector<size_t>> by_length;
+  for (size_t i = 0; i < plan.size(); ++i) by_length[plan[i].length_s].push_back(i);
+  std::vector<const std::vector<size_t>*> groups;
+  for (const auto& [length, idx] : by_length) groups.push_back(&idx);
+  std::vector<size_t> order(groups.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::mutex say_mutex;
+  parallel_for(order, o.threads, [&](size_t g) {
+    std::vector<OutageWindow> windows;
+    for (size_t i : *groups[g]) windows.push_back(plan[i]);
+    const std::vector<SmoothedGap> s = smooth_through_gaps(imu, gnss, cfg, fo, windows, reference, o.others, o.eval_period_s);
+    for (size_t k = 0; k < s.size(); ++k) results[(*groups[g])[k]].smoothed = s[k];
+    if (o.progress) {
+      std::lock_guard<std::mutex> lock(say_mutex);
+      o.progress("outage: smoothed the " + std::to_string(windows.size()) + " gaps of " +
+                 std::to_string(static_cast<int>(windows.front().length_s)) + " s");
+    }
+  });
+}
+
 }  // namespace
 
 OutageRun run_outages(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss, const KfGinsConfig& cfg,
@@ -213,6 +238,7 @@ OutageRun run_outages(const std::vector<ImuIncrement>& imu, const std::vector<Gn
     say(buf);
   });
   run.outages_run_s = seconds_since(t1);
+  if (o.smooth) smooth_outages(imu, gnss, cfg, fo, plan, reference, o, results);
   std::stable_sort(results.begin(), results.end(), [](const OutageResult& a, const OutageResult& b) {
     return a.window.length_s != b.window.length_s ? a.window.length_s < b.window.length_s : a.window.start_s < b.window.start_s;
   });

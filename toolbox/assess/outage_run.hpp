@@ -15,6 +15,7 @@
 #include "estimator/update/observation.hpp"
 #include "toolbox/assess/nav_difference.hpp"
 #include "toolbox/assess/outage_plan.hpp"
+#include "toolbox/assess/outage_smoothed.hpp"
 
 namespace ldv::assess {
 
@@ -30,6 +31,8 @@ struct OutageRunOptions {
   std::function<void(const std::string&)> progress;  // human-readable progress lines
   // Other sensors' readings (odometer with --aid odometer), time order; they go on during the outages.
   std::vector<est::ObservationPtr> others;
+  // Also smooth: per length, one forward + RTS run with every gap of that length cut (outage_smoothed.hpp).
+  bool smooth = false;
 };
 
 struct DriftPoint {
@@ -47,6 +50,7 @@ struct OutageResult {
   std::array<double, 9> max_abs{};    // max over the outage of |component| (solution_comparison.hpp order)
   double max_horizontal_m = 0.0;      // max over the outage of the horizontal position drift
   std::optional<NavDifference> uncut_error;  // uncut solution minus truth at t_end_s (truth given)
+  std::optional<SmoothedGap> smoothed;       // with OutageRunOptions::smooth
   std::vector<DriftPoint> curve;
 };
 

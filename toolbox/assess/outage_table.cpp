@@ -1,5 +1,6 @@
 #include "toolbox/assess/outage_table.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -77,6 +78,33 @@ void print_outage_table(std::FILE* out, const OutageRun& run, const std::vector<
   for (const OutageLengthSummary& s : summary)
     std::fprintf(out, "%6.0f s | %9.0f%% %7.0f%% %7.0f%% | %14.3f\n", s.length_s, 100 * s.inside_3sigma_pos,
                  100 * s.inside_3sigma_vel, 100 * s.inside_3sigma_att, s.mean_3sigma_horizontal_m);
+  print_smoothed_table(out, run, summary);
+}
+
+void print_smoothed_table(std::FILE* out, const OutageRun& run, const std::vector<OutageLengthSummary>& summary) {
+  if (std::none_of(run.outages.begin(), run.outages.end(), [](const OutageResult& r) { return r.smoothed.has_value(); }))
+    return;
+  std::fprintf(out,
+               "\nSmoothed (forward + RTS backward, every gap of a length cut in one run): largest horizontal error "
+               "inside each gap against the %s, mean and max over the gaps, beside the forward drift at the gap's end\n",
+               run.reference.c_str());
+  std::fprintf(out, "%8s %3s | %12s %12s | %15s | %8s | %14s\n", "outage", "n", "smoothed [m]", "max [m]",
+               "forward end [m]", "ratio", "smoothed 1sig");
+  for (const OutageLengthSummary& s : summary) {
+    double sum = 0, mx = 0, fwd = 0, sig = 0;
+    int n = 0;
+    for (const OutageResult& r : run.outages)
+      if (r.window.length_s == s.length_s && r.smoothed) {
+        sum += r.smoothed->max_horizontal_m;
+        mx = std::max(mx, r.smoothed->max_horizontal_m);
+        fwd += r.end_drift.pos_ned_m.head<2>().norm();
+        sig += r.smoothed->std_horizontal_at_max_m;
+        ++n;
+      }
+    if (n == 0) continue;
+    std::fprintf(out, "%6.0f s %3d | %12.3f %12.3f | %15.3f | %8.3f | %12.3f m\n", s.length_s, n, sum / n, mx, fwd / n,
+                 fwd > 0 ? sum / fwd : 0.0, sig / n);
+  }
 }
 
 namespace {
@@ -132,6 +160,15 @@ std::string outage_json(const OutageRun& run, const std::vector<OutageLengthSumm
                              .str());
     j.add("max_horizontal_m", r.max_horizontal_m).add_raw("max_abs", json_array({r.max_abs.begin(), r.max_abs.end()}));
     if (r.uncut_error) j.add_raw("uncut_error", difference_json(*r.uncut_error));
+    if (r.smoothed)
+      j.add_raw("smoothed", JsonObject()
+                                .add("max_horizontal_m", r.smoothed->max_horizontal_m)
+                                .add("t_max_sow_s", r.smoothed->t_max_s)
+                                .add("std_horizontal_at_max_m", r.smoothed->std_horizontal_at_max_m)
+                                .add("max_vertical_m", r.smoothed->max_vertical_m)
+                                .add("forward_max_horizontal_m", r.smoothed->forward_max_horizontal_m)
+                                .add("samples", r.smoothed->samples)
+                                .str());
     std::vector<double> ct, cn, ce, cd, sn, se, sd, yaw;
     for (const DriftPoint& p : r.curve) {
       ct.push_back(p.t_since_start_s);

@@ -35,6 +35,9 @@ struct EnvelopeCheck {
 EnvelopeCheck envelope_check(const OutageResult& r);
 
 void print_outage_table(std::FILE* out, const OutageRun& run, const std::vector<OutageLengthSummary>& s);
+// With smoothed results (ldv outage --smooth): the largest smoothed error inside the gaps per length (also
+// printed by print_outage_table).
+void print_smoothed_table(std::FILE* out, const OutageRun& run, const std::vector<OutageLengthSummary>& s);
 std::string outage_json(const OutageRun& run, const std::vector<OutageLengthSummary>& s);
 
 }  // namespace ldv::assess

@@ -5,10 +5,13 @@
 //            or a config whose imupath ends in .csv and gnsspath in .pos: tests/estimator/data/walk_0827_mems.yaml)
 //   ldv nav --lcm-log FILE.lcm --kfgins-config FILE.yaml   (replays the live fusion service's engine: the same
 //            NavSession as over files, estimator/run/nav_session.hpp)
+//   ldv smooth ... (= ldv nav --smooth ...): the forward run, then the Rauch-Tung-Striebel backward pass
+//            (estimator/smooth); the smoothed solution in --out, the forward one in FILE_forward.nav.
 // Inputs: IMU from KF-GINS imu.txt (--imu or the config) or a time-tagged CSV (--imu-csv); GNSS from KF-GINS
 // gnss.txt (--gnss or the config) or an RTKLIB .pos (--pos); or both from an LCM log (--lcm-log). IMU files are
 // corrected by an `ldv calib static` calibration (--calibration or ldv.calibration; toolbox/assess/nav_inputs.hpp).
-// Outputs: FILE.nav (KF-GINS layout, one line per IMU sample), FILE_std.txt, FILE_innovations.txt.
+// Outputs: FILE.nav (KF-GINS layout, one line per IMU sample), FILE_std.txt, FILE_innovations.txt
+// (tools/ldv/nav_outputs.hpp); smoothed: also FILE_separation.txt, and FILE_forward{.nav,_std.txt,_innovations.txt}.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -29,6 +32,7 @@
 #include "toolbox/assess/nav_inputs.hpp"
 #include "tools/ldv/command_registry.hpp"
 #include "tools/ldv/nav_input_options.hpp"
+#include "tools/ldv/nav_outputs.hpp"
 
 namespace {
 namespace fs = std::filesystem;
@@ -44,125 +48,7 @@ struct NavArgs {
   double history_s = 3.0;
   double align_wait_s = 1.0;
   bool quiet = false, print_options = false, host_clock_imu = false;
-};
-
-// Writes columns with fixed decimals fast (the std and innovation files), in 256 KiB blocks; write errors
-// raise InputError (at a block or at close()).
-class TextOut {
- public:
-  TextOut(const std::string& path, const std::string& header) : f_(path) {
-    buf_.resize(1 << 18);
-    f_.write(header);
-  }
-  ~TextOut() {
-    try {
-      flush();
-    } catch (const std::exception& e) {
-      spdlog::error("{}", e.what());
-    }
-  }
-  void close() {
-    flush();
-    f_.close();
-  }
-  void num(double v, int decimals) {
-    if (n_ > line_start_) buf_[n_++] = ' ';
-    n_ += format_fixed(buf_.data() + n_, v, decimals);
-  }
-  void text(const char* s) {
-    if (n_ > line_start_) buf_[n_++] = ' ';
-    while (*s) buf_[n_++] = *s++;
-  }
-  void end_line() {
-    buf_[n_++] = '\n';
-    if (n_ + 16384 > buf_.size()) flush();
-    line_start_ = n_;
-  }
-
- private:
-  void flush() {
-    const size_t n = n_;
-    n_ = line_start_ = 0;
-    f_.write(buf_.data(), n);
-  }
-  OutputFile f_;
-  std::vector<char> buf_;
-  size_t n_ = 0, line_start_ = 0;
-};
-
-// The three outputs of a run: .nav at every IMU sample, std rows at --std-rate, every innovation.
-class NavOutputs {
- public:
-  NavOutputs(const std::string& nav_path, const est::NavFilter& f, double std_rate_hz)
-      : nav_(nav_path),
-        std_(base(nav_path) + "_std.txt", std_header(f)),
-        innov_(base(nav_path) + "_innovations.txt",
-               "# t_sow kind innov_1 innov_2 innov_3 sqrtS_11 sqrtS_22 sqrtS_33 nis accepted(1/0) "
-               "(innovation = predicted - measured; position NED [m], velocity NED [m/s])\n"),
-        std_period_(std_rate_hz > 0 ? 1.0 / std_rate_hz : 0.0) {}
-
-  void epoch(const est::NavFilter& f, int week) {
-    const est::NavState& s = f.state();
-    NavRecord rec;
-    rec.week = week;
-    rec.sow_s = s.t_s;
-    rec.pos = s.pos;
-    rec.vel_n_mps = s.v_n_mps;
-    rec.rpy_rad = s.rpy_rad();
-    if (rec.rpy_rad.z() < 0) rec.rpy_rad.z() += 2.0 * kPi;  // KF-GINS prints yaw in [0, 360)
-    nav_.write(rec);
-    if (s.t_s + 1e-9 < next_std_t_) return;
-    next_std_t_ = s.t_s + std_period_;
-    const Eigen::MatrixXd& P = f.covariance();
-    std_.num(week, 0);
-    std_.num(s.t_s, 4);
-    for (int i = 0; i < 6; ++i) std_.num(std::sqrt(P(i, i)), 5);
-    for (int i = 6; i < 9; ++i) std_.num(std::sqrt(P(i, i)) * kRadToDeg, 6);
-    for (const auto& b : f.layout().blocks()) {
-      const double k = b.effect->print_unit().scale;
-      for (int j = 0; j < b.dim; ++j) {
-        std_.num(f.effect_state()(b.offset - est::kNavDim + j) * k, 6);
-        std_.num(std::sqrt(P(b.offset + j, b.offset + j)) * k, 6);
-      }
-    }
-    std_.end_line();
-  }
-
-  void innovation(const est::InnovationRecord& r) {
-    innov_.num(r.t_s, 4);
-    innov_.text(std::string(r.sensor).c_str());
-    // Three columns whatever the sensor's rows (the aids have 1-3; missing ones are written as 0).
-    for (int i = 0; i < 3; ++i) innov_.num(i < r.innovation.size() ? r.innovation(i) : 0.0, 5);
-    for (int i = 0; i < 3; ++i) innov_.num(i < r.innovation.size() ? std::sqrt(r.S(i, i)) : 0.0, 5);
-    innov_.num(r.nis, 3);
-    innov_.num(r.used() ? 1 : 0, 0);  // used: an outlier the robust update kept a trace of counts as rejected
-    innov_.end_line();
-  }
-
-  void close() {  // a full disk is an error here, not a truncated file and exit 0
-    nav_.close();
-    std_.close();
-    innov_.close();
-  }
-
-  static std::string base(const std::string& nav_path) {
-    std::string b = nav_path;
-    if (b.size() > 4 && b.substr(b.size() - 4) == ".nav") b.resize(b.size() - 4);
-    return b;
-  }
-
- private:
-  static std::string std_header(const est::NavFilter& f) {
-    std::string h =
-        "# week sow std_pos_n std_pos_e std_pos_d [m] std_vel_n std_vel_e std_vel_d [m/s] std_roll std_pitch std_yaw [deg]";
-    for (const auto& b : f.layout().blocks())
-      for (const auto& n : b.effect->state_names()) h += std::string(" ") + n + "[" + b.effect->print_unit().unit + "]";
-    return h + " (each effect state: estimate then std)\n";
-  }
-  NavWriter nav_;
-  TextOut std_, innov_;
-  double std_period_;
-  double next_std_t_ = -1e300;
+  bool smooth = false;
 };
 
 int week_from_config(const KfGinsConfig& cfg) {
@@ -201,6 +87,29 @@ void print_summary(const char* what, long imu_samples, double t0, double t1, lon
                  f.imu_noise_scale(), std::sqrt(f.imu_noise_scale()), ft.downweighted);
 }
 
+// The backward pass in numbers, and the separation QC: forward minus smoothed against its expected envelope.
+void print_smoothing_summary(const est::SmoothedRun& run, const est::RtsRecorder& rec, double forward_s,
+                             const std::string& forward_path) {
+  long beyond = 0, rows = 0;
+  double max_sep_h_m = 0.0, t_max = 0.0;
+  for (std::size_t i = 0; i < run.size(); i += 10) {
+    const est::SmoothedRow r = run.row(i);
+    const double h = r.separation.head<2>().norm();
+    if (h > max_sep_h_m) {
+      max_sep_h_m = h;
+      t_max = r.forward.t_s;
+    }
+    for (int k = 0; k < 3; ++k) beyond += std::abs(r.separation(k)) > 3.0 * r.std_separation(k) + 1e-4;
+    rows += 3;
+  }
+  std::fprintf(stderr,
+               "ldv nav: smoothed over %zu covariance epochs (%.0f MB of records on disk; forward pass %.1f s, "
+               "forward solution -> %s)\n  separation (forward - smoothed): largest horizontal %.3f m at %.3f s; "
+               "%.2f %% of position components beyond 3 sigma of the expected separation\n",
+               run.epochs().size(), rec.bytes_on_disk() / 1e6, forward_s, forward_path.c_str(), max_sep_h_m, t_max,
+               rows > 0 ? 100.0 * beyond / rows : 0.0);
+}
+
 // Command-line alignment settings override the configuration's ldv: keys.
 void apply_alignment_args(const NavArgs& a, est::FilterOptions& opt) {
   if (a.align_speed_mps > 0) opt.align_speed_mps = a.align_speed_mps;
@@ -223,14 +132,14 @@ void run_lcm_log(const NavArgs& a, const KfGinsConfig& cfg, est::FilterOptions o
   so.align_wait_s = a.align_wait_s;
   FusionEngine engine(so);
   const std::string nav_path = default_nav_path(a, cfg);
-  std::unique_ptr<NavOutputs> out;
+  std::unique_ptr<cli::NavOutputs> out;
   long n = 0;
   double t0 = 0, t1 = 0;
   // Each epoch written when the session navigates it (with the filter of that moment: the backlog released at
   // the alignment is many epochs in one call).
   engine.set_epoch_observer([&](const est::NavFilter& f, int gps_week) {
     if (!out) {
-      out = std::make_unique<NavOutputs>(nav_path, f, a.std_rate_hz);
+      out = std::make_unique<cli::NavOutputs>(nav_path, f, a.std_rate_hz);
       t0 = f.state().t_s;
     }
     for (const auto& r : engine.filter().take_innovations()) out->innovation(r);
@@ -274,6 +183,8 @@ void run_nav(const NavArgs& a) {
                      "give --kfgins-config FILE, or an IMU input (--imu FILE or --imu-csv FILE) and a GNSS input "
                      "(--gnss FILE or --pos FILE), or --lcm-log FILE");
 
+  if (!a.lcm_log.empty() && a.smooth)
+    throw InputError(a.lcm_log, 0, "smoothing works on files: `ldv export` the log to files first");
   if (!a.lcm_log.empty()) {
     assess::NavInputs model = assess::load_nav_model(a.in);
     apply_alignment_args(a, model.options);
@@ -305,26 +216,45 @@ void run_nav(const NavArgs& a) {
   }
   for (const std::string& w : assess::input_warnings(in)) std::fprintf(stderr, "ldv nav: WARNING: %s\n", w.c_str());
 
-  NavOutputs out(nav_path, *filter, a.std_rate_hz);
+  // Smoothing: the forward solution beside the smoothed one, which takes the --out name.
+  const std::string forward_path = a.smooth ? cli::output_base(nav_path) + "_forward.nav" : nav_path;
+  cli::NavOutputs out(forward_path, *filter, a.std_rate_hz);
+  std::unique_ptr<est::RtsRecorder> recorder;
+  if (a.smooth) {
+    recorder = std::make_unique<est::RtsRecorder>(*filter);
+    filter->set_observer(recorder.get());
+  }
   est::RunCallbacks cb;
-  cb.on_epoch = [&](const est::NavFilter& f) { out.epoch(f, week); };
+  cb.on_epoch = [&](const est::NavFilter& f) {
+    out.epoch(f, week);
+    if (recorder) recorder->add_row(f, week);
+  };
   cb.on_innovation = [&](const est::InnovationRecord& r) { out.innovation(r); };
   const bool show_progress = !a.quiet && in.imu.size() > 100000;
-  if (show_progress)
-    cb.on_progress = [](double done) { std::fprintf(stderr, "\rldv nav: %3.0f %%", done * 100.0); };
+  const char* pass = a.smooth ? "forward" : "";
+  auto progress = [&pass](double done) { std::fprintf(stderr, "\rldv nav: %s %3.0f %%", pass, done * 100.0); };
+  if (show_progress) cb.on_progress = progress;
 
   const est::RunSummary sum = est::run_navigation(in.imu, in.gnss, in.config, *filter, cb, &ao, &in.other_observations);
   out.close();
+  const double forward_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
+  if (recorder) {
+    pass = "backward";
+    const est::SmoothedRun run = recorder->smooth(show_progress ? std::function<void(double)>(progress) : nullptr);
+    pass = "writing";
+    cli::write_smoothed(run, filter->layout(), nav_path, a.std_rate_hz,
+                        show_progress ? std::function<void(double)>(progress) : nullptr);
+    if (!a.quiet) print_smoothing_summary(run, *recorder, forward_s, forward_path);
+  }
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
   if (show_progress) std::fprintf(stderr, "\r");
   if (!a.quiet)
-    print_summary("files", sum.imu_samples, sum.t_start_s, sum.t_end_s, sum.gnss_fixes, sum.initialisation, *filter,
-                  elapsed, nav_path);
+    print_summary(a.smooth ? "files, smoothed" : "files", sum.imu_samples, sum.t_start_s, sum.t_end_s, sum.gnss_fixes,
+                  sum.initialisation, *filter, elapsed, nav_path);
 }
 
-void add_nav_command(CLI::App& app) {
-  auto args = std::make_shared<NavArgs>();
-  CLI::App* c = app.add_subcommand("nav", "GPS/INS error-state EKF over KF-GINS files (writes a KF-GINS .nav)");
+// `nav` and `smooth` take the same options (`smooth` = `nav --smooth`).
+void add_nav_options(CLI::App* c, const std::shared_ptr<NavArgs>& args) {
   cli::add_nav_input_options(c, args->in);
   c->add_option(
       "--lcm-log", args->lcm_log,
@@ -349,5 +279,26 @@ void add_nav_command(CLI::App& app) {
   c->callback([args] { run_nav(*args); });
 }
 
+void add_nav_command(CLI::App& app) {
+  auto args = std::make_shared<NavArgs>();
+  CLI::App* c = app.add_subcommand("nav", "GPS/INS error-state EKF over KF-GINS files (writes a KF-GINS .nav)");
+  add_nav_options(c, args);
+  c->add_flag("--smooth", args->smooth,
+              "forward filter, then the Rauch-Tung-Striebel backward pass: the smoothed solution in --out, the "
+              "forward one in FILE_forward.nav, forward minus smoothed in FILE_separation.txt (= ldv smooth)");
+}
+
+void add_smooth_command(CLI::App& app) {
+  auto args = std::make_shared<NavArgs>();
+  args->smooth = true;
+  CLI::App* c = app.add_subcommand(
+      "smooth",
+      "post-processing: the GPS/INS filter forward, then the Rauch-Tung-Striebel smoother backward (writes the "
+      "smoothed .nav, its _std.txt and _separation.txt, and the forward solution as FILE_forward.nav); the options "
+      "of ldv nav");
+  add_nav_options(c, args);
+}
+
 const ldv::cli::RegisterCommand kRegister{"nav", &add_nav_command};
+const ldv::cli::RegisterCommand kRegisterSmooth{"smooth", &add_smooth_command};
 }  // namespace

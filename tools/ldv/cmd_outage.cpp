@@ -64,6 +64,9 @@ void add_outage_command(CLI::App& app) {
   c->add_option("--min-speed", a->run.plan.min_speed_mps, "an outage starts only when moving faster [m/s]")->check(cli::finite_range(0, 1e3));
   c->add_option("--threads", a->run.threads, "worker threads (0: all cores; at most 256 are used)")->check(CLI::Range(0, 100000));
   c->add_flag("--exact", a->run.exact_rerun, "re-run the whole filter per outage instead of restarting from checkpoints (slow)");
+  c->add_flag("--smooth", a->run.smooth,
+              "also smooth (forward + RTS backward; per length one run with all its gaps cut): the largest smoothed "
+              "error inside each gap");
   c->add_flag("--no-zupt", a->no_zupt, "no zero-velocity updates (in the uncut run and the outages)");
   c->add_flag("--quiet", a->quiet, "no progress on stderr");
   c->callback([a] { run_outage(*a); });

@@ -1,0 +1,59 @@
+#include "toolbox/assess/outage_smoothed.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "estimator/run/run_navigation.hpp"
+#include "estimator/smooth/rts_recorder.hpp"
+#include "toolbox/assess/nav_difference.hpp"
+
+namespace ldv::assess {
+
+std::vector<SmoothedGap> smooth_through_gaps(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
+                                             const KfGinsConfig& cfg, const est::FilterOptions& options,
+                                             const std::vector<OutageWindow>& windows, const NavSeries& reference,
+                                             const std::vector<est::ObservationPtr>& others, double eval_period_s) {
+  auto gap_of = [&](double t_s) {
+    for (std::size_t g = 0; g < windows.size(); ++g)
+      if (t_s > windows[g].start_s && t_s <= windows[g].start_s + windows[g].length_s) return static_cast<int>(g);
+    return -1;
+  };
+  std::vector<GnssFix> cut;
+  for (const GnssFix& f : gnss)
+    if (gap_of(f.t_s) < 0) cut.push_back(f);
+
+  est::NavFilter filter(options);
+  est::RtsRecorder recorder(filter);
+  filter.set_observer(&recorder);
+  est::RunCallbacks cb;
+  cb.on_epoch = [&](const est::NavFilter& f) { recorder.add_row(f, 0); };
+  est::run_navigation(imu, cut, cfg, filter, cb, nullptr, &others);
+  const est::SmoothedRun run = recorder.smooth();
+
+  std::vector<SmoothedGap> out(windows.size());
+  std::vector<double> next_t(windows.size(), -1e300);
+  for (std::size_t i = 0; i < run.size(); ++i) {
+    const double t = run.t_s(i);
+    const int g = gap_of(t);
+    if (g < 0 || t < next_t[g]) continue;
+    next_t[g] = t + eval_period_s;
+    const auto ref = reference.at(t);
+    if (!ref) continue;
+    const est::SmoothedRow r = run.row(i);
+    const NavDifference ds = nav_difference({t, r.smoothed.pos, r.smoothed.v_n_mps, r.smoothed.q_b_n}, *ref);
+    const NavDifference df = nav_difference({t, r.forward.pos, r.forward.v_n_mps, r.forward.q_b_n}, *ref);
+    SmoothedGap& s = out[g];
+    ++s.samples;
+    const double h = ds.pos_ned_m.head<2>().norm();
+    if (h >= s.max_horizontal_m) {
+      s.max_horizontal_m = h;
+      s.t_max_s = t;
+      s.std_horizontal_at_max_m = r.std_smoothed.head<2>().norm();
+    }
+    s.max_vertical_m = std::max(s.max_vertical_m, std::abs(ds.pos_ned_m.z()));
+    s.forward_max_horizontal_m = std::max(s.forward_max_horizontal_m, df.pos_ned_m.head<2>().norm());
+  }
+  return out;
+}
+
+}  // namespace ldv::assess

@@ -1,0 +1,59 @@
+#pragma once
+// The files `ldv nav` and `ldv smooth` write: FILE.nav (KF-GINS layout, every IMU sample), FILE_std.txt (std
+// and effect estimates at --std-rate), FILE_innovations.txt (every measurement), and for a smoothed run
+// FILE_separation.txt (forward minus smoothed, with its expected 1-sigma).
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "common/formats/kfgins_files.hpp"
+#include "common/io/output_file.hpp"
+#include "estimator/filter/nav_filter.hpp"
+#include "estimator/smooth/rts_recorder.hpp"
+
+namespace ldv::cli {
+
+// Writes columns with fixed decimals fast, in 256 KiB blocks; write errors raise InputError (at a block or at
+// close()).
+class TextOut {
+ public:
+  TextOut(const std::string& path, const std::string& header);
+  ~TextOut();  // writes what is buffered (errors logged: close() is where they are reported)
+  void close();
+  void num(double v, int decimals);
+  void text(const char* s);
+  void end_line();
+
+ private:
+  void flush();
+  OutputFile f_;
+  std::vector<char> buf_;
+  size_t n_ = 0, line_start_ = 0;
+};
+
+// FILE.nav -> FILE (the other outputs are named after it).
+std::string output_base(const std::string& nav_path);
+// KF-GINS's .nav row of a state (yaw in [0, 360)).
+NavRecord nav_record(const est::NavState& s, int week);
+
+// The three outputs of a filter run: .nav at every IMU sample, std rows at std_rate_hz, every innovation.
+class NavOutputs {
+ public:
+  NavOutputs(const std::string& nav_path, const est::NavFilter& f, double std_rate_hz);
+  void epoch(const est::NavFilter& f, int week);
+  void innovation(const est::InnovationRecord& r);
+  void close();  // a full disk is an error here, not a truncated file and exit 0
+
+ private:
+  NavWriter nav_;
+  TextOut std_, innov_;
+  double std_period_;
+  double next_std_t_ = -1e300;
+};
+
+// A smoothed run's files: FILE.nav, FILE_std.txt (the smoothed std and effect estimates, as NavOutputs writes
+// them) and FILE_separation.txt at std_rate_hz.
+void write_smoothed(const est::SmoothedRun& run, const est::StateLayout& layout, const std::string& nav_path,
+                    double std_rate_hz, const std::function<void(double)>& progress = {});
+
+}  // namespace ldv::cli
