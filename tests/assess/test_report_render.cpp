@@ -113,3 +113,36 @@ TEST(ReportRender, PageWithEveryPlotOpensInChromium) {
   EXPECT_GT(fs::file_size(dir / "screenshot.png"), 50000u);  // a blank page is a few kB
   std::printf("report: %s, screenshot: %s\n", (out / "index.html").c_str(), (dir / "screenshot.png").c_str());
 }
+
+// A smoothed run (`ldv smooth`, GNSS cut for 60 s in turns): the page has the smoothing section, its two plots,
+// the forward/smoothed table, and the separation QC inside its expected envelope.
+TEST(ReportRender, SmoothedRunHasTheSmoothingSection) {
+  const fs::path dir = fs::temp_directory_path() / "ldv_assess_report_smooth_test";
+  fs::remove_all(dir);
+  sim::SimRequest req;
+  req.grade = "hg1700";
+  req.seed = 4;
+  req.duration_s = 240.0;
+  req.scenario = "figure8";
+  req.outages = {{120.0, 60.0}};
+  sim::SimResult s = sim::simulate(req);
+  sim::write_outputs(s, (dir / "sim").string());
+  const std::string truth = (dir / "sim" / "truth.nav").string(), nav = (dir / "smoothed.nav").string();
+  ASSERT_EQ(run(kLdv + " smooth --quiet --kfgins-config " + (dir / "sim" / "kfgins.yaml").string() + " --out " + nav), 0);
+  const fs::path out = dir / "report";
+  ASSERT_EQ(run(kLdv + " report --nav " + nav + " --truth " + truth + " --out " + out.string() + " > /dev/null"), 0);
+  const std::string html = slurp(out / "index.html");
+  EXPECT_NE(html.find("Smoothing: forward and smoothed"), std::string::npos);
+  EXPECT_NE(html.find("Innovations"), std::string::npos) << "the forward run's innovations, found beside it";
+  for (const char* png : {"smoothing_error.png", "smoothing_separation.png"}) {
+    ASSERT_TRUE(fs::exists(out / png)) << png;
+    EXPECT_GT(fs::file_size(out / png), 2000u) << png;
+  }
+  const std::smatch m = [&] {
+    std::smatch r;
+    std::regex_search(html, r, std::regex("inside 3 sigma</td><td[^>]*>([0-9.]+) %"));
+    return r;
+  }();
+  ASSERT_EQ(m.size(), 2u) << "the separation QC row";
+  EXPECT_GE(std::stod(m[1].str()), 97.0);
+}

@@ -24,9 +24,9 @@ struct Result {
   std::string err;
 };
 
-Result run_ldv(const std::string& args, const fs::path& dir) {
+Result run_ldv(const std::string& args, const fs::path& dir, const std::string& command = "nav") {
   const std::string err_path = (dir / "stderr.txt").string();
-  const std::string cmd = std::string(LDV_BIN_DIR) + "/ldv nav " + args + " --quiet 2> " + err_path;
+  const std::string cmd = std::string(LDV_BIN_DIR) + "/ldv " + command + " " + args + " --quiet 2> " + err_path;
   const int rc = std::system(cmd.c_str());
   std::ifstream in(err_path);
   std::stringstream ss;
@@ -79,6 +79,54 @@ TEST_F(NavCli, WritesKfginsNavIntoOutputPathWithWeekStdAndInnovations) {
   int n = 0;
   for (std::string f; fields >> f;) ++n;
   EXPECT_EQ(n, 11) << line;
+}
+
+// The issue 15 contract: `ldv smooth --kfgins-config FILE.yaml --out OUT.nav` writes the smoothed solution in the
+// .nav layout and OUT_std.txt beside it (plus the separation and the forward solution). A 40 s GNSS outage in
+// turns: the smoothed solution inside it is far closer to the truth than the forward one.
+TEST(SmoothCli, WritesTheSmoothedNavStdAndSeparation) {
+  const fs::path dir = fs::temp_directory_path() / ("ldv_smooth_cli_" + std::to_string(::getpid()));
+  sim::SimRequest req;
+  req.grade = "hg1700";
+  req.seed = 9;
+  req.duration_s = 200.0;
+  req.scenario = "figure8";
+  req.outages = {{100.0, 40.0}};
+  sim::SimResult sim = sim::simulate(req);
+  sim::write_outputs(sim, (dir / "drive").string());
+  const fs::path out = dir / "smoothed.nav";
+  const Result r = run_ldv("--kfgins-config " + (dir / "drive" / "kfgins.yaml").string() + " --out " + out.string(), dir,
+                           "smooth");
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* f : {"smoothed_std.txt", "smoothed_separation.txt", "smoothed_forward.nav"})
+    EXPECT_TRUE(fs::exists(dir / f)) << f;
+  const auto smoothed = read_nav(out.string());
+  const auto forward = read_nav((dir / "smoothed_forward.nav").string());
+  ASSERT_EQ(smoothed.size(), sim.imu.size());
+  ASSERT_EQ(forward.size(), smoothed.size());
+  const double t0 = sim.truth.front().t_s;
+  double worst_smoothed = 0, worst_forward = 0;
+  for (size_t i = 0; i < smoothed.size(); ++i) {
+    EXPECT_EQ(smoothed[i].sow_s, forward[i].sow_s);
+    const double run_t = smoothed[i].sow_s - t0;
+    if (run_t < 100.0 || run_t > 140.0) continue;
+    const auto& truth = sim.truth[static_cast<size_t>(std::llround(run_t * req.imu_rate_hz))];
+    ASSERT_NEAR(truth.t_s, smoothed[i].sow_s, 1e-6);
+    worst_smoothed = std::max(worst_smoothed, earth::ned_between(truth.pos, smoothed[i].pos).head<2>().norm());
+    worst_forward = std::max(worst_forward, earth::ned_between(truth.pos, forward[i].pos).head<2>().norm());
+  }
+  std::printf("40 s outage: largest horizontal error forward %.3f m, smoothed %.3f m\n", worst_forward, worst_smoothed);
+  EXPECT_LT(worst_smoothed, 0.1 * worst_forward);
+  std::ifstream sd(dir / "smoothed_std.txt");
+  std::string header, row;
+  std::getline(sd, header);
+  std::getline(sd, row);
+  EXPECT_NE(header.find("std_pos_n"), std::string::npos);
+  std::istringstream fields(row);
+  int n = 0;
+  for (std::string f; fields >> f;) ++n;
+  EXPECT_EQ(n, 2 + 9 + 2 * 12) << "week, sow, 9 navigation std, kfgins21's 12 effect states with their std";
+  fs::remove_all(dir);
 }
 
 TEST_F(NavCli, ModelAddDropOutAndPosInput) {

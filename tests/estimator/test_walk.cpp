@@ -17,6 +17,7 @@
 #include "estimator/run/alignment_options_from.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "toolbox/assess/nav_inputs.hpp"
+#include "toolbox/assess/outage_smoothed.hpp"
 
 namespace ldv::est {
 namespace {
@@ -148,6 +149,47 @@ TEST(Walk, AgreesWithRtkFixedAndBoundsOutageDrift) {
   // heading error times distance walked, 0.5 deg x 40 m = 0.35 m). Bounds: 6 m and 60 m.
   for (double d : d10) EXPECT_LT(d, 6.0);
   for (double d : d30) EXPECT_LT(d, 60.0);
+}
+
+// Post-processing the walk: GNSS cut in 10 s and 30 s gaps while walking, filtered forward and smoothed
+// backward; inside each gap, the largest horizontal error of both against the uncut solution (which follows the
+// ~1 cm RTK fixes: innovation RMS a few cm).
+TEST(Walk, SmoothingTiesBothEndsOfAnOutage) {
+  const Walk& w = walk();
+  std::vector<assess::NavSample> uncut;
+  {
+    NavFilter f(w.in.options);
+    RunCallbacks cb;
+    cb.on_epoch = [&](const NavFilter& nf) {
+      uncut.push_back({nf.state().t_s, nf.state().pos, nf.state().v_n_mps, nf.state().q_b_n});
+    };
+    const AlignmentOptions ao = alignment_options_from(w.in.options);
+    run_navigation(w.in.imu, w.gnss, w.in.config, f, cb, &ao);
+  }
+  const assess::NavSeries reference(std::move(uncut));
+  const double t0 = w.gnss.front().t_s;
+  auto gaps = [&](std::vector<double> starts, double len) {
+    std::vector<assess::OutageWindow> windows;
+    for (double s : starts) windows.push_back({len, t0 + s, true});
+    return assess::smooth_through_gaps(w.in.imu, w.gnss, w.in.config, w.in.options, windows, reference, {}, 0.05);
+  };
+  const auto g10 = gaps({30.0, 45.0, 60.0, 75.0, 90.0}, 10.0);
+  const auto g30a = gaps({30.0}, 30.0), g30b = gaps({60.0}, 30.0);
+  std::vector<assess::SmoothedGap> all = g10;
+  all.push_back(g30a.front());
+  all.push_back(g30b.front());
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const assess::SmoothedGap& g = all[i];
+    std::printf("walk_0827: %s gap %zu: forward max %.2f m, smoothed max %.3f m (1-sigma %.3f m), %d samples\n",
+                i < 5 ? "10 s" : "30 s", i, g.forward_max_horizontal_m, g.max_horizontal_m, g.std_horizontal_at_max_m,
+                g.samples);
+    ASSERT_GT(g.samples, 100);
+    // Never worse than forward, and inside the smoother's own 3 sigma (plus the reference's few cm).
+    EXPECT_LE(g.max_horizontal_m, g.forward_max_horizontal_m);
+    EXPECT_LE(g.max_horizontal_m, 3.0 * g.std_horizontal_at_max_m + 0.05);
+  }
+  // 30 s free-inertial walking drifts 5-17 m forward; tied at both ends the error stays at a few decimetres.
+  for (const auto* g : {&g30a.front(), &g30b.front()}) EXPECT_LE(g->max_horizontal_m, 0.25 * g->forward_max_horizontal_m);
 }
 
 // The IMU clock: the time_offset effect (IMU time error, estimated through the filter's own gains against the

@@ -14,6 +14,22 @@ std::string base_of(const std::string& nav_path) {
 
 std::string std_path_for(const std::string& nav_path) { return base_of(nav_path) + "_std.txt"; }
 std::string innovations_path_for(const std::string& nav_path) { return base_of(nav_path) + "_innovations.txt"; }
+std::string separation_path_for(const std::string& nav_path) { return base_of(nav_path) + "_separation.txt"; }
+std::string forward_path_for(const std::string& nav_path) { return base_of(nav_path) + "_forward.nav"; }
+
+std::vector<SeparationRow> read_separation_file(const std::string& path) {
+  std::vector<SeparationRow> rows;
+  read_numeric_table(path, 20, 20, [&](long, const std::vector<double>& v) {
+    SeparationRow r;
+    r.t_s = v[1];
+    for (int k = 0; k < 9; ++k) {
+      r.separation(k) = v[2 + k];
+      r.std(k) = v[11 + k];
+    }
+    rows.push_back(r);
+  });
+  return rows;
+}
 
 std::vector<StdRow> read_std_file(const std::string& path) {
   std::vector<StdRow> rows;

@@ -17,6 +17,11 @@ std::string write_report(const ReportInputs& given, const std::string& dir) {
   if (!in.nav.empty()) {
     if (in.std_file.empty() && fs::exists(std_path_for(in.nav))) in.std_file = std_path_for(in.nav);
     if (in.innovations.empty() && fs::exists(innovations_path_for(in.nav))) in.innovations = innovations_path_for(in.nav);
+    // A smoothed run: its forward solution and the separation beside it; the innovations are the forward run's.
+    if (in.forward.empty() && fs::exists(forward_path_for(in.nav))) in.forward = forward_path_for(in.nav);
+    if (in.separation.empty() && fs::exists(separation_path_for(in.nav))) in.separation = separation_path_for(in.nav);
+    if (in.innovations.empty() && !in.forward.empty() && fs::exists(innovations_path_for(in.forward)))
+      in.innovations = innovations_path_for(in.forward);
     const NavSeries nav = NavSeries::from_records(read_nav(in.nav));
     NavSeries reference;
     if (!in.truth.empty()) reference = NavSeries::from_records(read_nav(in.truth));
@@ -26,6 +31,7 @@ std::string write_report(const ReportInputs& given, const std::string& dir) {
                    (ref ? "; compared with " + in.reference_label + " " + in.truth : "") + ".");
     add_trajectory_section(page, dir, nav, ref, in);
     add_error_section(page, dir, nav, ref, in);
+    if (!in.forward.empty() || !in.separation.empty()) add_smoothing_section(page, dir, nav, ref, in);
   }
   if (!in.innovations.empty()) add_innovation_section(page, dir, in);
   if (!in.outage_json.empty()) add_outage_section(page, dir, in);

@@ -15,6 +15,8 @@ struct ReportInputs {
   std::string reference_label = "truth";
   std::string std_file;     // ldv nav's _std.txt (default: beside the .nav when present)
   std::string innovations;  // ldv nav's _innovations.txt (default: beside the .nav when present)
+  // ldv smooth's forward solution and separation (default: FILE_forward.nav, FILE_separation.txt when present)
+  std::string forward, separation;
   std::string outage_json, allan_json, diagnose_json;
   double settle_s = 0.0;
   int max_plot_points = 4000;
@@ -24,6 +26,8 @@ void add_trajectory_section(HtmlPage& page, const std::string& dir, const NavSer
                             const ReportInputs& in);
 void add_error_section(HtmlPage& page, const std::string& dir, const NavSeries& nav, const NavSeries* reference,
                        const ReportInputs& in);
+void add_smoothing_section(HtmlPage& page, const std::string& dir, const NavSeries& smoothed, const NavSeries* reference,
+                           const ReportInputs& in);
 void add_innovation_section(HtmlPage& page, const std::string& dir, const ReportInputs& in);
 void add_outage_section(HtmlPage& page, const std::string& dir, const ReportInputs& in);
 void add_allan_section(HtmlPage& page, const std::string& dir, const ReportInputs& in);

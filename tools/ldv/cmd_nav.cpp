@@ -103,7 +103,7 @@ void print_smoothing_summary(const est::SmoothedRun& run, const est::RtsRecorder
     rows += 3;
   }
   std::fprintf(stderr,
-               "ldv nav: smoothed over %zu covariance epochs (%.0f MB of records on disk; forward pass %.1f s, "
+               "ldv smooth: smoothed over %zu covariance epochs (%.0f MB of records on disk; forward pass %.1f s, "
                "forward solution -> %s)\n  separation (forward - smoothed): largest horizontal %.3f m at %.3f s; "
                "%.2f %% of position components beyond 3 sigma of the expected separation\n",
                run.epochs().size(), rec.bytes_on_disk() / 1e6, forward_s, forward_path.c_str(), max_sep_h_m, t_max,
@@ -231,19 +231,20 @@ void run_nav(const NavArgs& a) {
   };
   cb.on_innovation = [&](const est::InnovationRecord& r) { out.innovation(r); };
   const bool show_progress = !a.quiet && in.imu.size() > 100000;
-  const char* pass = a.smooth ? "forward" : "";
-  auto progress = [&pass](double done) { std::fprintf(stderr, "\rldv nav: %s %3.0f %%", pass, done * 100.0); };
+  const char* pass = a.smooth ? "ldv smooth: forward" : "ldv nav:";
+  auto progress = [&pass](double done) { std::fprintf(stderr, "\r%s %3.0f %%", pass, done * 100.0); };
   if (show_progress) cb.on_progress = progress;
 
   const est::RunSummary sum = est::run_navigation(in.imu, in.gnss, in.config, *filter, cb, &ao, &in.other_observations);
   out.close();
   const double forward_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
   if (recorder) {
-    pass = "backward";
+    pass = "ldv smooth: backward";
     const est::SmoothedRun run = recorder->smooth(show_progress ? std::function<void(double)>(progress) : nullptr);
-    pass = "writing";
+    pass = "ldv smooth: writing";
     cli::write_smoothed(run, filter->layout(), nav_path, a.std_rate_hz,
                         show_progress ? std::function<void(double)>(progress) : nullptr);
+    if (show_progress) std::fprintf(stderr, "\r%40s\r", "");
     if (!a.quiet) print_smoothing_summary(run, *recorder, forward_s, forward_path);
   }
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();

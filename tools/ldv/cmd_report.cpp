@@ -22,6 +22,10 @@ void add_report_command(CLI::App& app) {
   c->add_option("--reference-label", a->in.reference_label, "what --truth is called on the page (default truth)");
   c->add_option("--std", a->in.std_file, "ldv nav's _std.txt");
   c->add_option("--innovations", a->in.innovations, "ldv nav's _innovations.txt");
+  c->add_option("--forward", a->in.forward,
+                "with a smoothed --nav: the forward solution (default FILE_forward.nav beside it, as ldv smooth writes)");
+  c->add_option("--separation", a->in.separation,
+                "with a smoothed --nav: ldv smooth's _separation.txt (default beside it)");
   c->add_option("--outage-json", a->in.outage_json, "ldv outage --json output");
   c->add_option("--allan-json", a->in.allan_json, "ldv allan --json output");
   c->add_option("--diagnose-json", a->in.diagnose_json, "ldv diagnose --json output");
