@@ -26,4 +26,26 @@ Eigen::Matrix<double, 9, 1> nav_error(const NavState& s, const sim::TruthSample&
 Accuracy evaluate(const sim::SimResult& sim, FilterOptions options, double settle_s = 60.0,
                   const std::vector<ObservationPtr>& others = {});
 
+// A simulated figure-8 drive with GNSS outages, filtered forward (kfgins21 + gnss_position_bias, which the
+// simulator's RTK errors need) and smoothed (estimator/smooth); both against truth at 10 Hz.
+struct GapErrors {
+  double forward_end_m = 0.0;   // forward horizontal error at the gap's last epoch
+  double smoothed_max_m = 0.0;  // largest smoothed horizontal error inside the gap
+};
+struct SmoothedDrive {
+  std::vector<GapErrors> gaps;
+  double forward_aided_rms_m = 0.0, smoothed_aided_rms_m = 0.0;  // horizontal, outside the gaps
+  double within_3sigma_aided = 0.0, within_3sigma_gaps = 0.0;    // fraction of smoothed errors (9 components)
+  double nees_per_dof_aided = 0.0, nees_per_dof_gaps = 0.0;      // mean (e / sigma)^2 of the 9 components
+  double forward_nees_per_dof_gaps = 0.0;                          // the same of the forward filter
+};
+SmoothedDrive smooth_drive(const std::string& grade, std::uint64_t seed, const std::vector<sim::Outage>& outages,
+                           double duration_s);
+// The issue 15 criteria (gtest expectations): aided RMS no worse than forward, and the smoothed errors consistent
+// with the smoothed covariance, in the gaps too;
+void expect_smoothed_consistent(const SmoothedDrive& d);
+// and the largest smoothed horizontal error inside each gap at most max_ratio of the forward drift at its end
+// (1/10 tactical, 1/4 MEMS).
+void expect_smoothing_works(const SmoothedDrive& d, double max_ratio);
+
 }  // namespace ldv::est::test

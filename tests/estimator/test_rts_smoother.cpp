@@ -6,9 +6,7 @@
 #include <cmath>
 #include <random>
 
-#include "estimator/run/run_navigation.hpp"
 #include "estimator/smooth/rts_recorder.hpp"
-#include "sim/simulator.hpp"
 #include "tests/estimator/sim_run.hpp"
 
 namespace ldv::est {
@@ -139,114 +137,12 @@ TEST(RtsEpochStore, GivenEpochsWrittenAndSomeVoided_ThenTheyReadBackExactly) {
   }
 }
 
-// A simulated drive with GNSS outages, filtered forward and smoothed; errors of both against truth.
-struct GapErrors {
-  double forward_end_m = 0.0;    // forward horizontal error at the gap's last epoch
-  double smoothed_max_m = 0.0;   // largest smoothed horizontal error inside the gap
-};
-struct SmoothedDrive {
-  std::vector<GapErrors> gaps;
-  double forward_aided_rms_m = 0.0, smoothed_aided_rms_m = 0.0;  // horizontal, outside the gaps
-  double within_3sigma_aided = 0.0, within_3sigma_gaps = 0.0;    // fraction of smoothed errors (9 components)
-  double nees_per_dof_aided = 0.0, nees_per_dof_gaps = 0.0;      // mean (e / sigma)^2 of the 9 components
-  double forward_nees_per_dof_gaps = 0.0;                          // the same of the forward filter
-};
-
-SmoothedDrive smooth_drive(const std::string& grade, std::uint64_t seed, const std::vector<sim::Outage>& outages,
-                           double duration_s) {
-  sim::SimRequest req;
-  req.grade = grade;
-  req.seed = seed;
-  req.duration_s = duration_s;
-  req.scenario = "figure8";
-  req.outages = outages;
-  const sim::SimResult sim = sim::simulate(req);
-  KfGinsConfig cfg = sim.kfgins;
-  cfg.end_time_s = -1;
-  FilterOptions opt = options_from_kfgins(cfg);
-  // The simulator's RTK errors have a 60 s Gauss-Markov part: modelled, as a consistency check needs.
-  opt.add.push_back("gnss_position_bias");
-  NavFilter filter(opt);
-  RtsRecorder recorder(filter);
-  filter.set_observer(&recorder);
-  RunCallbacks cb;
-  cb.on_epoch = [&](const NavFilter& f) { recorder.add_row(f, 0); };
-  run_navigation(sim.imu, sim.gnss, cfg, filter, cb);
-  const SmoothedRun run = recorder.smooth();
-
-  SmoothedDrive d;
-  d.gaps.resize(outages.size());
-  const double t0 = sim.truth.front().t_s, dt = 1.0 / req.imu_rate_hz;
-  double sf = 0, ss = 0, in_aided = 0, in_gaps = 0, nees_aided = 0, nees_gaps = 0, forward_nees_gaps = 0;
-  long n_aided = 0, n_gaps = 0;
-  for (std::size_t i = 0; i < run.size(); i += 20) {  // 10 Hz
-    const SmoothedRow row = run.row(i);
-    const double t = row.forward.t_s;
-    const size_t k = static_cast<size_t>(std::llround((t - t0) / dt));
-    if (k >= sim.truth.size() || std::abs(sim.truth[k].t_s - t) > 1e-6) continue;
-    const auto ef = test::nav_error(row.forward, sim.truth[k]);
-    const auto es = test::nav_error(row.smoothed, sim.truth[k]);
-    const double run_t = t - t0;
-    int gap = -1;
-    for (std::size_t g = 0; g < outages.size(); ++g)
-      if (run_t >= outages[g].start_s && run_t < outages[g].start_s + outages[g].length_s) gap = static_cast<int>(g);
-    const Eigen::Matrix<double, 9, 1> z = es.cwiseQuotient(row.std_smoothed);
-    const double within = (z.array().abs() <= 3.0).cast<double>().mean();
-    if (gap >= 0) {
-      GapErrors& ge = d.gaps[gap];
-      ge.forward_end_m = ef.head<2>().norm();  // the last sample inside the gap stays
-      ge.smoothed_max_m = std::max(ge.smoothed_max_m, es.head<2>().norm());
-      in_gaps += within;
-      nees_gaps += z.squaredNorm() / 9.0;
-      forward_nees_gaps += ef.cwiseQuotient(row.std_forward).squaredNorm() / 9.0;
-      ++n_gaps;
-    } else if (run_t > 30.0) {
-      sf += ef.head<2>().squaredNorm();
-      ss += es.head<2>().squaredNorm();
-      in_aided += within;
-      nees_aided += z.squaredNorm() / 9.0;
-      ++n_aided;
-    }
-  }
-  d.forward_aided_rms_m = std::sqrt(sf / n_aided);
-  d.smoothed_aided_rms_m = std::sqrt(ss / n_aided);
-  d.within_3sigma_aided = in_aided / n_aided;
-  d.within_3sigma_gaps = in_gaps / n_gaps;
-  d.nees_per_dof_aided = nees_aided / n_aided;
-  d.nees_per_dof_gaps = nees_gaps / n_gaps;
-  d.forward_nees_per_dof_gaps = forward_nees_gaps / n_gaps;
-  for (std::size_t g = 0; g < d.gaps.size(); ++g)
-    std::printf("%s seed %llu gap %zu (%.0f s): forward drift at the end %.3f m, smoothed max inside %.3f m\n",
-                grade.c_str(), static_cast<unsigned long long>(seed), g, outages[g].length_s, d.gaps[g].forward_end_m,
-                d.gaps[g].smoothed_max_m);
-  std::printf("  aided horizontal RMS forward %.4f m, smoothed %.4f m; smoothed within 3 sigma: aided %.4f, gaps %.4f; "
-              "NEES per dof: aided %.2f, gaps %.2f (forward %.2f)\n",
-              d.forward_aided_rms_m, d.smoothed_aided_rms_m, d.within_3sigma_aided, d.within_3sigma_gaps,
-              d.nees_per_dof_aided, d.nees_per_dof_gaps, d.forward_nees_per_dof_gaps);
-  return d;
-}
-
-void expect_smoothing_works(const SmoothedDrive& d, double max_ratio) {
-  for (const GapErrors& g : d.gaps) EXPECT_LE(g.smoothed_max_m, max_ratio * g.forward_end_m);
-  EXPECT_LE(d.smoothed_aided_rms_m, d.forward_aided_rms_m);
-  // Consistent: 3 sigma holds the error (99.7 % of a Gaussian; time-correlated samples, so 97 %), the
-  // normalised squared error is not above 1 by much (not overconfident), and not below the forward filter's by
-  // much: the smoother is as honest as the model it smooths (the simulator's configuration for a grade is
-  // pessimistic in free inertial, most of all vertically: the forward NEES per dof in the gaps is 0.1-0.3).
-  EXPECT_GE(d.within_3sigma_aided, 0.97);
-  EXPECT_GE(d.within_3sigma_gaps, 0.97);
-  EXPECT_GT(d.nees_per_dof_aided, 0.2);
-  EXPECT_LT(d.nees_per_dof_aided, 2.0);
-  EXPECT_GT(d.nees_per_dof_gaps, d.forward_nees_per_dof_gaps / 3.0);
-  EXPECT_LT(d.nees_per_dof_gaps, 2.0);
-}
-
 TEST(RtsSmoother, GivenATacticalImuWith60And120sOutagesInTurns_ThenTheSmoothedGapErrorIsATenthOfTheDrift) {
-  expect_smoothing_works(smooth_drive("hg1700", 1, {{120.0, 60.0}, {260.0, 120.0}}, 440.0), 0.1);
+  test::expect_smoothing_works(test::smooth_drive("hg1700", 1, {{120.0, 60.0}, {260.0, 120.0}}, 440.0), 0.1);
 }
 
 TEST(RtsSmoother, GivenAMemsImuWith60And120sOutagesInTurns_ThenTheSmoothedGapErrorIsAQuarterOfTheDrift) {
-  expect_smoothing_works(smooth_drive("3dm-gx2", 2, {{120.0, 60.0}, {260.0, 120.0}}, 440.0), 0.25);
+  test::expect_smoothing_works(test::smooth_drive("3dm-gx2", 2, {{120.0, 60.0}, {260.0, 120.0}}, 440.0), 0.25);
 }
 
 }  // namespace
