@@ -2,6 +2,8 @@
 
 #include <Eigen/Cholesky>
 
+#include "estimator/smooth/transition_product.hpp"
+
 namespace ldv::est {
 
 std::vector<SmoothedEpoch> rts_backward(const RtsEpochStore& store, const std::function<void(double)>& progress) {
@@ -29,14 +31,20 @@ std::vector<SmoothedEpoch> rts_backward(const RtsEpochStore& store, const std::f
       e_s.setZero();
       P_s = cur.P_post;
     } else {
-      // C = P+ Phi^T (P-)^-1, through an LDL^T of P- (semi-definite: a state without noise or variance
-      // has a zero pivot, which the solve skips).
-      const Eigen::LDLT<Eigen::MatrixXd> ldlt(next.P_prior);
-      const Eigen::MatrixXd C = ldlt.solve(next.Phi * cur.P_post).transpose();
+      // C = P+ Phi^T (P-)^-1, through a Cholesky factor of P-; an LDL^T where P- is only semi-definite (a
+      // state without noise or variance has a zero pivot, which the solve skips).
+      const Eigen::MatrixXd G = transition_times(next.Phi, cur.P_post);  // Phi P+ = C^T P-
+      const Eigen::LLT<Eigen::MatrixXd> llt(next.P_prior);
+      const Eigen::MatrixXd C = (llt.info() == Eigen::Success ? Eigen::MatrixXd(llt.solve(G))
+                                                              : Eigen::MatrixXd(next.P_prior.ldlt().solve(G)))
+                                    .transpose();
       const Eigen::VectorXd e_prior_next = e_s + next.dx;
       e_s = C * e_prior_next;
-      P_s = cur.P_post + C * (P_s - next.P_prior) * C.transpose();
-      P_s = 0.5 * (P_s + P_s.transpose()).eval();
+      // P^s = P+ + C (P^s_next - P-) C^T, symmetric: only its lower half is computed, then mirrored.
+      const Eigen::MatrixXd CD = C * (P_s - next.P_prior);
+      P_s = cur.P_post;
+      P_s.triangularView<Eigen::Lower>() += CD * C.transpose();
+      P_s.triangularView<Eigen::StrictlyUpper>() = P_s.transpose();
     }
     keep(k, cur);
     next = std::move(cur);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "common/geo/earth_model.hpp"
+#include "estimator/smooth/transition_product.hpp"
 
 namespace ldv::est {
 namespace {
@@ -16,6 +17,7 @@ RtsRecorder::RtsRecorder(const NavFilter& filter)
 void RtsRecorder::close_current() {
   if (current_) store_.append(*current_);
   current_.reset();
+  current_updated_ = false;
 }
 
 void RtsRecorder::void_after(double t_s) {
@@ -26,6 +28,16 @@ void RtsRecorder::void_after(double t_s) {
 }
 
 void RtsRecorder::on_propagation(double t_s, double dt_s, const Eigen::MatrixXd& Phi, const Eigen::MatrixXd&) {
+  const bool continues = current_ && std::abs(current_->t_s - (t_s - dt_s)) <= kSameEpoch_s;
+  const double last_kept_t_s = store_.size() > 0 ? store_.t_s(store_.size() - 1) : -1e300;
+  if (continues && !current_updated_ && t_s - last_kept_t_s <= kMaxEpochSpan_s + kSameEpoch_s) {
+    // Nothing happened at the current epoch: this propagation extends it.
+    current_->Phi = transition_times(Phi, current_->Phi);
+    current_->t_s = t_s;
+    current_->P_prior = current_->P_post = filter_.covariance();
+    current_->x_eff = filter_.effect_state();
+    return;
+  }
   void_after(t_s - dt_s);  // normally nothing: the last epoch is where this propagation starts
   RtsEpoch e;
   e.t_s = t_s;
@@ -40,6 +52,7 @@ void RtsRecorder::on_propagation(double t_s, double dt_s, const Eigen::MatrixXd&
 void RtsRecorder::on_update(const InnovationRecord& r, const Eigen::MatrixXd&, const Eigen::MatrixXd& K) {
   if (!current_ || K.cols() != r.innovation.size() || !r.accepted) return;
   current_->dx += K * r.innovation;
+  current_updated_ = true;
   current_->P_post = filter_.covariance();
   current_->x_eff = filter_.effect_state();
 }
@@ -53,6 +66,7 @@ void RtsRecorder::on_restart(double t_s, const Eigen::MatrixXd& P) {
   e.dx = Eigen::VectorXd::Zero(P.rows());
   e.x_eff = filter_.effect_state();
   current_ = std::move(e);
+  current_updated_ = true;  // a restart is kept as it is
 }
 
 void RtsRecorder::add_row(const NavFilter& f, int week) {

@@ -4,9 +4,11 @@
 // RAM: 96 bytes a row, 66 MB for 1 h at 200 Hz). smooth() then runs the backward pass (rts_backward.hpp)
 // and gives each row its smoothed state.
 //
-// Between two covariance epochs (at most FilterOptions::cov_period_s apart) the nominal is propagated from
-// the first one, so a row's smoothed error is interpolated linearly in time between the first epoch's
-// post-update value and the second's pre-update one.
+// Epochs without an update are merged into the next (Phi multiplied, the later covariance kept: the backward pass
+// gives the same result at the epochs kept), up to kMaxEpochSpan_s apart; between two epochs the nominal is
+// propagated from the first one, so a row's smoothed error is interpolated linearly in time between the first
+// epoch's post-update value and the second's pre-update one (the error grows smoothly: over 0.5 s the
+// interpolation is far inside the smoothed sigma).
 // Late readings that rewind the filter (live use) void what was recorded after the rewind's epoch: this is
 // for forward passes over files, where readings are handed to the filter ahead of the IMU.
 #include <optional>
@@ -56,6 +58,7 @@ class RtsRecorder final : public FilterObserver {
   // The forward solution at an IMU epoch (the filter after its sample; RunCallbacks::on_epoch).
   void add_row(const NavFilter& f, int week);
 
+  static constexpr double kMaxEpochSpan_s = 0.5;
   std::size_t epochs() const { return store_.size() + (current_ ? 1 : 0); }
   std::size_t rows() const { return rows_.size(); }
   std::size_t bytes_on_disk() const { return store_.bytes_on_disk(); }
@@ -69,6 +72,7 @@ class RtsRecorder final : public FilterObserver {
   const NavFilter& filter_;
   RtsEpochStore store_;
   std::optional<RtsEpoch> current_;  // the last epoch, still taking its updates
+  bool current_updated_ = false;     // it has taken one (or is a restart): it is kept, not merged
   std::vector<std::pair<int, NavState>> rows_;
 };
 
