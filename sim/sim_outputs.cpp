@@ -169,6 +169,8 @@ KfGinsConfig datasheet_config(const SimResult& r) {
   c.start_time_s = r.kfgins.start_time_s;
   c.end_time_s = -1.0;
   c.imu_noise = r.kfgins.imu_noise;
+  c.init_gyro_bias_std_rad_s = r.kfgins.init_gyro_bias_std_rad_s;  // the datasheet's turn-on bias
+  c.init_accel_bias_std_mps2 = r.kfgins.init_accel_bias_std_mps2;
   YAML::Node ldv;
   ldv["week"] = r.request.gps_week;
   if (r.kfgins.ldv["odopath"]) ldv["odopath"] = r.kfgins.ldv["odopath"].as<std::string>();
