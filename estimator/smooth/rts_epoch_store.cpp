@@ -1,6 +1,9 @@
 #include "estimator/smooth/rts_epoch_store.hpp"
 
+#include <unistd.h>
+
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -8,9 +11,25 @@
 namespace ldv::est {
 namespace {
 
+std::string temp_dir() {
+  const char* d = std::getenv("TMPDIR");
+  return d && *d ? d : "/tmp";
+}
+
 [[noreturn]] void fail(const char* what) {
-  throw std::runtime_error(std::string("smoother's temporary file ($TMPDIR or /tmp): ") + what + ": " +
+  throw std::runtime_error("the smoother's temporary file in " + temp_dir() + " ($TMPDIR): " + what + ": " +
                            std::strerror(errno));
+}
+
+// An unnamed file: created in $TMPDIR (or /tmp) and unlinked at once, so it goes when the process does.
+std::FILE* unnamed_temp_file() {
+  std::string path = temp_dir() + "/ldv_smooth_XXXXXX";
+  const int fd = mkstemp(path.data());
+  if (fd < 0) return nullptr;
+  unlink(path.c_str());
+  std::FILE* f = fdopen(fd, "w+b");
+  if (!f) close(fd);
+  return f;
 }
 
 // Symmetric matrices are stored as their upper triangle.
@@ -20,7 +39,7 @@ std::size_t tri(int n) { return static_cast<std::size_t>(n) * (n + 1) / 2; }
 
 RtsEpochStore::RtsEpochStore(int n, int m)
     : n_(n), m_(m), record_doubles_(1 + static_cast<std::size_t>(n) * n + 2 * tri(n) + n + m) {
-  file_ = std::tmpfile();
+  file_ = unnamed_temp_file();
   if (!file_) fail("cannot create it");
   buf_.resize(record_doubles_);
 }

@@ -1,7 +1,7 @@
 #pragma once
 // The forward pass's covariance epochs, as the Rauch-Tung-Striebel backward pass reads them. Written in time
-// order, read back in any order. The records live in an unnamed temporary file (std::tmpfile, in $TMPDIR or
-// /tmp), not in RAM: 1 h at 200 Hz with a 51-state model is 36,000 epochs of ~42 KB (1.5 GB); only their
+// order, read back in any order. The records live in an unnamed temporary file (in $TMPDIR, else /tmp), not in
+// RAM: 1 h at 200 Hz with a 51-state model is 36,000 epochs of ~42 KB (1.5 GB); only their
 // times stay in memory.
 #include <Eigen/Core>
 #include <cstdio>
