@@ -444,6 +444,7 @@ void NavFilter::rewind_and_apply(const Event& event) {
   // Readings applied now but not contained in the snapshot are applied again, in order, with the late one.
   const std::deque<Event> applied_now = c_.applied;
   c_ = snapshots_[k];
+  announce_restart();  // an observer's records after the snapshot no longer hold
   snapshots_.erase(snapshots_.begin() + k + 1, snapshots_.end());
   for (const Event& a : applied_now) {
     const bool in_snapshot =
@@ -605,7 +606,8 @@ void NavFilter::reset_covariance() {
 }
 
 void NavFilter::announce_restart() {
-  if (observer_.p && observer_.p->wants_matrices()) observer_.p->on_restart(c_.nav.t_s, c_.P);
+  // P belongs to the last covariance epoch, which lags the state by the samples accumulated since.
+  if (observer_.p && observer_.p->wants_matrices()) observer_.p->on_restart(c_.nav.t_s - c_.acc_T_s, c_.P);
 }
 
 void NavFilter::set_covariance(const Eigen::MatrixXd& P) {

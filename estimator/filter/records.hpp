@@ -36,9 +36,10 @@ class FilterObserver {
   // Covariance propagation over (t_s - dt_s, t_s]: P+ = Phi P Phi^T + Qd. Also an instant change (dt_s = 0,
   // Phi = I): the variance a re-synchronisation opens before its update.
   virtual void on_propagation(double t_s, double dt_s, const Eigen::MatrixXd& Phi, const Eigen::MatrixXd& Qd) {}
-  // The filter goes on from t_s with covariance P that does not follow from the one before: initialize (also
-  // after restart, possibly earlier than what was seen), a covariance reset, a state reset to the last healthy
-  // state. What was seen after t_s is void.
+  // The filter goes on from t_s (its covariance epoch) with covariance P that does not follow from what the
+  // observer saw before: initialize (also after restart, possibly earlier than what was seen), a covariance
+  // reset, a state reset to the last healthy state, a rewind to a snapshot for a late reading. What was seen
+  // after t_s is void.
   virtual void on_restart(double t_s, const Eigen::MatrixXd& P) {}
   // A measurement: its record, H (rows x n) and gain K (n x rows; zero when rejected).
   virtual void on_update(const InnovationRecord& r, const Eigen::MatrixXd& H, const Eigen::MatrixXd& K) {}

@@ -22,11 +22,14 @@ std::vector<SmoothedEpoch> rts_backward(const RtsEpochStore& store, const std::f
     o.var_forward_post = ep.P_post.diagonal();
     o.var_forward_prior = ep.P_prior.diagonal();
     o.x_eff = ep.x_eff;
+    o.restart = ep.Phi.isZero(0.0);
   };
   keep(N - 1, next);
   for (std::size_t k = N - 1; k-- > 0;) {
     RtsEpoch cur = store.read(k);
-    if (next.Phi.isZero(0.0)) {
+    const bool finite = next.Phi.allFinite() && next.P_prior.allFinite() && cur.P_post.allFinite() &&
+                        next.dx.allFinite() && e_s.allFinite() && P_s.allFinite();
+    if (next.Phi.isZero(0.0) || !finite) {
       // A restart at `next`: nothing after it says anything about `cur`.
       e_s.setZero();
       P_s = cur.P_post;

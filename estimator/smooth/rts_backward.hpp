@@ -7,7 +7,8 @@
 //   e_k^s = C_k (e_k+1^s + dx_k+1)          (the smoothed error of the post-update nominal)
 //   P_k^s = P_k+ + C_k (P_k+1^s - P_k+1-) C_k^T
 // starting from e_N^s = 0, P_N^s = P_N+. The smoothed state is x_k with e_k^s taken out (as the filter
-// corrects: x -= e). A restart (Phi = 0) passes nothing back: the smoother starts afresh before it.
+// corrects: x -= e). A restart (Phi = 0) passes nothing back: the smoother starts afresh before it; so does an
+// epoch whose matrices are not finite (a numerical fault the filter recovered from).
 // Forward minus smoothed is e^s, of covariance P+ - P^s (the smoothed error is orthogonal to it): the
 // separation and its expected envelope.
 #include <Eigen/Core>
@@ -25,6 +26,7 @@ struct SmoothedEpoch {
   Eigen::VectorXd var_smoothed;  // diagonal of P^s
   Eigen::VectorXd var_forward_post, var_forward_prior;  // diagonals of P+ and P-
   Eigen::VectorXd x_eff;  // the effect states' forward nominal after the updates
+  bool restart = false;   // the filter restarted here (Phi = 0): rows before it are not interpolated into it
 };
 
 // progress(done fraction) is called now and then.

@@ -48,6 +48,10 @@ RtsEpochStore::~RtsEpochStore() {
   if (file_) std::fclose(file_);
 }
 
+void RtsEpochStore::seek_to(std::size_t k) const {
+  if (fseeko(file_, static_cast<off_t>(k * record_doubles_ * sizeof(double)), SEEK_SET) != 0) fail("seek");
+}
+
 void RtsEpochStore::write_at(std::size_t k, const RtsEpoch& e) {
   if (e.Phi.rows() != n_ || e.Phi.cols() != n_ || e.P_prior.rows() != n_ || e.P_post.rows() != n_ ||
       e.dx.size() != n_ || e.x_eff.size() != m_)
@@ -60,7 +64,7 @@ void RtsEpochStore::write_at(std::size_t k, const RtsEpoch& e) {
       for (int r = 0; r <= c; ++r) *p++ = (*M)(r, c);
   p = std::copy(e.dx.data(), e.dx.data() + n_, p);
   std::copy(e.x_eff.data(), e.x_eff.data() + m_, p);
-  if (std::fseek(file_, static_cast<long>(k * record_doubles_ * sizeof(double)), SEEK_SET) != 0) fail("seek");
+  seek_to(k);
   if (std::fwrite(buf_.data(), sizeof(double), record_doubles_, file_) != record_doubles_) fail("write (disk full?)");
 }
 
@@ -69,20 +73,14 @@ void RtsEpochStore::append(const RtsEpoch& e) {
   t_s_.push_back(e.t_s);
 }
 
-void RtsEpochStore::rewrite_last(const RtsEpoch& e) {
-  if (t_s_.empty()) throw std::logic_error("RtsEpochStore::rewrite_last on an empty store");
-  write_at(t_s_.size() - 1, e);
-  t_s_.back() = e.t_s;
-}
-
 void RtsEpochStore::truncate(std::size_t count) {
   if (count < t_s_.size()) t_s_.resize(count);  // later writes overwrite the dropped records
 }
 
 RtsEpoch RtsEpochStore::read(std::size_t k) const {
   if (k >= t_s_.size()) throw std::out_of_range("RtsEpochStore::read");
-  std::fflush(file_);
-  if (std::fseek(file_, static_cast<long>(k * record_doubles_ * sizeof(double)), SEEK_SET) != 0) fail("seek");
+  if (std::fflush(file_) != 0) fail("write (disk full?)");
+  seek_to(k);
   if (std::fread(buf_.data(), sizeof(double), record_doubles_, file_) != record_doubles_) fail("read");
   RtsEpoch e;
   const double* p = buf_.data();

@@ -78,11 +78,12 @@ void RtsRecorder::add_row(const NavFilter& f, int week) {
 
 SmoothedRun RtsRecorder::smooth(const std::function<void(double)>& progress) {
   close_current();
-  return SmoothedRun(rts_backward(store_, progress), std::move(rows_));
+  return SmoothedRun(rts_backward(store_, progress), std::move(rows_), store_.m());
 }
 
-SmoothedRun::SmoothedRun(std::vector<SmoothedEpoch> epochs, std::vector<std::pair<int, NavState>> rows)
-    : epochs_(std::move(epochs)), rows_(std::move(rows)) {
+SmoothedRun::SmoothedRun(std::vector<SmoothedEpoch> epochs, std::vector<std::pair<int, NavState>> rows,
+                         int effect_dim)
+    : epochs_(std::move(epochs)), rows_(std::move(rows)), effect_dim_(effect_dim) {
   epoch_t_s_.reserve(epochs_.size());
   for (const SmoothedEpoch& e : epochs_) epoch_t_s_.push_back(e.t_s);
 }
@@ -92,7 +93,10 @@ SmoothedRow SmoothedRun::row(std::size_t i) const {
   out.week = rows_.at(i).first;
   out.forward = rows_[i].second;
   out.smoothed = out.forward;
-  if (epochs_.empty()) return out;
+  if (epochs_.empty()) {  // nothing recorded (a filter that never started): the forward row, no std
+    out.x_eff_smoothed = out.std_eff_smoothed = Eigen::VectorXd::Zero(effect_dim_);
+    return out;
+  }
   const double t = out.forward.t_s;
   // The epoch the row's nominal was propagated from (the last at or before it, after its updates), and the
   // next one (before its updates).
@@ -100,7 +104,7 @@ SmoothedRow SmoothedRun::row(std::size_t i) const {
   const std::size_t k = after == epoch_t_s_.begin() ? 0 : static_cast<std::size_t>(after - epoch_t_s_.begin()) - 1;
   const SmoothedEpoch& a = epochs_[k];
   Eigen::VectorXd dx = a.dx_post, var_s = a.var_smoothed, var_f = a.var_forward_post;
-  if (k + 1 < epochs_.size() && t > a.t_s) {
+  if (k + 1 < epochs_.size() && t > a.t_s && !epochs_[k + 1].restart) {
     const SmoothedEpoch& b = epochs_[k + 1];
     const double w = std::clamp((t - a.t_s) / (b.t_s - a.t_s), 0.0, 1.0);
     dx = (1.0 - w) * a.dx_post + w * b.dx_prior;

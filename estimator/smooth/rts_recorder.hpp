@@ -9,8 +9,9 @@
 // propagated from the first one, so a row's smoothed error is interpolated linearly in time between the first
 // epoch's post-update value and the second's pre-update one (the error grows smoothly: over 0.5 s the
 // interpolation is far inside the smoothed sigma).
-// Late readings that rewind the filter (live use) void what was recorded after the rewind's epoch: this is
-// for forward passes over files, where readings are handed to the filter ahead of the IMU.
+// A late reading that rewinds the filter (live use) is a restart to the recorder (nothing passes back across it,
+// and rows already recorded after it are not replaced): this is for forward passes over files, where readings
+// are handed to the filter ahead of the IMU.
 #include <optional>
 #include <vector>
 
@@ -34,7 +35,7 @@ struct SmoothedRow {
 
 class SmoothedRun {
  public:
-  SmoothedRun(std::vector<SmoothedEpoch> epochs, std::vector<std::pair<int, NavState>> rows);
+  SmoothedRun(std::vector<SmoothedEpoch> epochs, std::vector<std::pair<int, NavState>> rows, int effect_dim);
   std::size_t size() const { return rows_.size(); }
   double t_s(std::size_t i) const { return rows_[i].second.t_s; }
   SmoothedRow row(std::size_t i) const;
@@ -44,6 +45,7 @@ class SmoothedRun {
   std::vector<SmoothedEpoch> epochs_;
   std::vector<double> epoch_t_s_;
   std::vector<std::pair<int, NavState>> rows_;
+  int effect_dim_;
 };
 
 class RtsRecorder final : public FilterObserver {

@@ -131,6 +131,7 @@ SmoothedDrive smooth_drive(const std::string& grade, std::uint64_t seed, const s
       ++n_aided;
     }
   }
+  for (const GapErrors& g : d.gaps) EXPECT_GT(g.forward_end_m, 0.0) << "a gap with no sample compared";
   d.forward_aided_rms_m = std::sqrt(sf / n_aided);
   d.smoothed_aided_rms_m = std::sqrt(ss / n_aided);
   d.within_3sigma_aided = in_aided / n_aided;

@@ -72,8 +72,10 @@ void add_smoothing_section(HtmlPage& page, const std::string& dir, const NavSeri
   std::array<std::vector<double>, 3> c;  // separation / its expected sigma, N E D
   long inside = 0, total = 0;
   for (const SeparationRow& r : sep) {
+    if (r.t_s < t0 + in.settle_s) continue;
     for (int k = 0; k < 3; ++k) {
-      inside += std::abs(r.separation(k)) <= 3.0 * r.std(k) + 1e-4;  // 0.1 mm: the file's resolution
+      if (r.std(k) <= 1e-4) continue;  // no separation expected (the run's end, a restart): nothing to check
+      inside += std::abs(r.separation(k)) <= 3.0 * r.std(k);
       ++total;
     }
   }

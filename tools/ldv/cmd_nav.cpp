@@ -87,6 +87,18 @@ void print_summary(const char* what, long imu_samples, double t0, double t1, lon
                  f.imu_noise_scale(), std::sqrt(f.imu_noise_scale()), ft.downweighted);
 }
 
+// A forward run written over an earlier smoothed one's name: its separation and forward files would make
+// `ldv report` show a smoothing section that is not this run's.
+void remove_stale_smoothing_outputs(const std::string& nav_path) {
+  const std::string base = cli::output_base(nav_path);
+  for (const std::string& f : {base + "_separation.txt", base + "_forward.nav", base + "_forward_std.txt",
+                               base + "_forward_innovations.txt"}) {
+    std::error_code ec;
+    if (fs::is_regular_file(f, ec) && fs::remove(f, ec))
+      std::fprintf(stderr, "ldv nav: removed %s (an earlier ldv smooth's output under this name)\n", f.c_str());
+  }
+}
+
 // The backward pass in numbers, and the separation QC: forward minus smoothed against its expected envelope.
 void print_smoothing_summary(const est::SmoothedRun& run, const est::RtsRecorder& rec, double forward_s,
                              const std::string& forward_path) {
@@ -99,8 +111,11 @@ void print_smoothing_summary(const est::SmoothedRun& run, const est::RtsRecorder
       max_sep_h_m = h;
       t_max = r.forward.t_s;
     }
-    for (int k = 0; k < 3; ++k) beyond += std::abs(r.separation(k)) > 3.0 * r.std_separation(k) + 1e-4;
-    rows += 3;
+    for (int k = 0; k < 3; ++k) {
+      if (r.std_separation(k) <= 1e-4) continue;  // no separation expected (the run's end, a restart)
+      beyond += std::abs(r.separation(k)) > 3.0 * r.std_separation(k);
+      ++rows;
+    }
   }
   std::fprintf(stderr,
                "ldv smooth: smoothed over %zu covariance epochs (%.0f MB of records on disk; forward pass %.1f s, "
@@ -218,6 +233,7 @@ void run_nav(const NavArgs& a) {
 
   // Smoothing: the forward solution beside the smoothed one, which takes the --out name.
   const std::string forward_path = a.smooth ? cli::output_base(nav_path) + "_forward.nav" : nav_path;
+  if (!a.smooth) remove_stale_smoothing_outputs(nav_path);
   cli::NavOutputs out(forward_path, *filter, a.std_rate_hz);
   std::unique_ptr<est::RtsRecorder> recorder;
   if (a.smooth) {
