@@ -17,7 +17,9 @@ ImuErrorSimulator::ImuErrorSimulator(const ImuSensorModel& model, uint64_t seed)
       gyro_white_(seed, "gyro_white"),
       accel_white_(seed, "accel_white"),
       gyro_moving_(seed, "gyro_moving"),
-      accel_moving_(seed, "accel_moving") {
+      accel_moving_(seed, "accel_moving"),
+      gyro_quant_(seed, "gyro_quantization"),
+      accel_quant_(seed, "accel_quantization") {
   M_gyro_ = Mat3::Identity() + Mat3(model.gyro.scale.asDiagonal()) + non_orthogonality(model.gyro.misalignment_rad);
   M_accel_ = Mat3::Identity() + Mat3(model.accel.scale.asDiagonal()) + non_orthogonality(model.accel.misalignment_rad);
   Rng init(seed, "imu_initial_state");
@@ -38,6 +40,14 @@ ImuErrorSimulator::ImuErrorSimulator(const ImuSensorModel& model, uint64_t seed)
   };
   init_triad(model.gyro, gyro_);
   init_triad(model.accel, accel_);
+  // The white quantisation error of the integral before the first sample (stationary from the start).
+  auto init_q = [&](const TriadSensorModel& m, TriadState& s, Rng& quant) {
+    for (int i = 0; i < 3; ++i)
+      if (model.with_noise && !m.quantization_rounding && m.quantization_Q[i] > 0)
+        s.q_error[i] = m.quantization_Q[i] * std::sqrt(12.0) * (quant.uniform() - 0.5);
+  };
+  init_q(model.gyro, gyro_, gyro_quant_);
+  init_q(model.accel, accel_, accel_quant_);
 }
 
 Vec3 ImuErrorSimulator::moving_bias(const TriadSensorModel& m, const TriadState& s, double t) const {
@@ -50,7 +60,7 @@ Vec3 ImuErrorSimulator::moving_bias(const TriadSensorModel& m, const TriadState&
 }
 
 Vec3 ImuErrorSimulator::apply_triad(const TriadSensorModel& m, TriadState& s, Rng& white, Rng& moving,
-                                    const Vec3& exact, double dt, double t_mid, const Vec3& sq, const Mat3& M) {
+                                    Rng& quant, const Vec3& exact, double dt, double t_mid, const Vec3& sq, const Mat3& M) {
   Vec3 out = M * exact + moving_bias(m, s, t_mid) * dt;
   if (m.any_nonlinear()) out += m.nonlinear.cwiseProduct(sq);
   if (!model_.with_noise) return out;
@@ -69,7 +79,19 @@ Vec3 ImuErrorSimulator::apply_triad(const TriadSensorModel& m, TriadState& s, Rn
   }
   for (int i = 0; i < 3; ++i)
     if (m.rate_rw_K[i] > 0) s.rw[i] += m.rate_rw_K[i] * sqrt_dt * moving.normal();
-  // Quantised running integral.
+  // The paper's Q: a white error e_k of std Q on the integral (uniform over one step Q sqrt(12), as an ideally
+  // dithered quantiser's), so the increment carries e_k - e_{k-1}.
+  if (!m.quantization_rounding) {
+    for (int i = 0; i < 3; ++i) {
+      const double step = m.quantization_Q[i] * std::sqrt(12.0);
+      if (step <= 0) continue;
+      const double e = step * (quant.uniform() - 0.5);
+      out[i] += e - s.q_error[i];
+      s.q_error[i] = e;
+    }
+    return out;
+  }
+  // ADC rounding of the running integral.
   for (int i = 0; i < 3; ++i) {
     const double step = m.quantization_Q[i] * std::sqrt(12.0);
     if (step <= 0) continue;
@@ -83,10 +105,10 @@ Vec3 ImuErrorSimulator::apply_triad(const TriadSensorModel& m, TriadState& s, Rn
 
 ImuIncrement ImuErrorSimulator::apply(const ImuIncrement& truth, double t_mid, const Vec3& w_sq, const Vec3& f_sq) {
   ImuIncrement out = truth;
-  out.dtheta_b_rad = apply_triad(model_.gyro, gyro_, gyro_white_, gyro_moving_, truth.dtheta_b_rad, truth.dt_s, t_mid,
+  out.dtheta_b_rad = apply_triad(model_.gyro, gyro_, gyro_white_, gyro_moving_, gyro_quant_, truth.dtheta_b_rad, truth.dt_s, t_mid,
                                  w_sq, M_gyro_);
   if (!model_.g_sensitivity.isZero()) out.dtheta_b_rad += model_.g_sensitivity.cwiseProduct(truth.dvel_b_mps);
-  out.dvel_b_mps = apply_triad(model_.accel, accel_, accel_white_, accel_moving_, truth.dvel_b_mps, truth.dt_s, t_mid,
+  out.dvel_b_mps = apply_triad(model_.accel, accel_, accel_white_, accel_moving_, accel_quant_, truth.dvel_b_mps, truth.dt_s, t_mid,
                                f_sq, M_accel_);
   return out;
 }

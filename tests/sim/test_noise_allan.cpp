@@ -2,7 +2,9 @@
 // within the chi-square confidence interval (NIST SP 1065 equivalent degrees of freedom).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "sim_test_helpers.hpp"
@@ -134,15 +136,83 @@ TEST(SimNoiseAllan, RateRampAloneFollowsRTauOverSqrt2Exactly) {
   }
 }
 
-TEST(SimNoiseAllan, QuantisationFollowsSqrt3QOverTauAboveItsWhiteNoiseDither) {
-  // The running integral is quantised with step Q sqrt(12). The quantisation error is white (std Q)
-  // only when something dithers it, as the sensor's own white noise does (a constant rate alone
-  // gives a periodic error): with N^2 dt = 12 Q^2 the Allan variance is 3 Q^2 / tau^2 + N^2 / tau,
-  // the Q term a fifth of it at tau = dt.
+TEST(SimNoiseAllan, QuantisationAloneFollowsSqrt3QOverTauAtEveryTau) {
+  // The paper's Q: a white error of std Q on the integrated angle (each increment gets e_k - e_{k-1}), so the
+  // Allan variance is exactly 3 Q^2 / tau^2 at every tau, with no dither needed. 1 h at 10 Hz, Q alone; the
+  // measured ADEV must hold Q sqrt(3) / tau inside its 99 % chi-square interval (white-PM EDF of SP 1065
+  // table 5: +-1.4 % at tau = 0.1 s, +-4.5 % at 10 s, +-14 % at 100 s) and within 15 % at every tau.
+  ImuGrade g;
+  g.name = "quantisation only";
+  const double Q = 20.0 * kDegToRad / 3600.0;  // 20 arcsec
+  g.gyro.quantization_Q = Vec3::Constant(Q);
+  const auto y = gyro_z_rate_error(g, 3600.0, 15);
+  const double n_phase = static_cast<double>(y.size() + 1);
+  for (size_t m : {1, 3, 10, 100, 1000}) {
+    const double tau = 0.1 * m;
+    const double expected = std::sqrt(3.0) * Q / tau;
+    const double a = overlapping_adev(y, 0.1, m);
+    const double dof = (n_phase + 1) * (n_phase - 2 * m) / (2 * (n_phase - m));  // white PM
+    EXPECT_TRUE(within_ci(a, expected, dof)) << "tau " << tau;
+    EXPECT_NEAR(a / expected, 1.0, 0.15) << "tau " << tau;
+    std::printf("[ info ] Q alone: tau %7.1f s  ADEV / (Q sqrt(3) / tau) = %.4f (edf %.0f)\n", tau, a / expected, dof);
+  }
+  // The error of the integrated angle is white with std Q, not accumulating: the sum of the errors over the
+  // hour is e_K - e_{-1} (std Q sqrt(2)).
+  double sum = 0;
+  for (double v : y) sum += v * 0.1;
+  EXPECT_LT(std::abs(sum), 5.0 * std::sqrt(2.0) * Q);
+}
+
+TEST(SimNoiseAllan, TheHg1700GyroFollowsThePapersQAndNLine) {
+  // The paper's hg1700 gyro z (hg1700-paper, Table 5: Q 16.687 arcsec, N 0.045 deg/sqrt(h)) with every other term of the grade
+  // removed but Q and N: ADEV^2 = 3 Q^2 / tau^2 + N^2 / tau (Q dominates below 3 Q^2 / N^2 = 114 s).
+  ImuGrade g = imu_grade("hg1700-paper");
+  ImuGrade only;
+  only.gyro.quantization_Q = g.gyro.quantization_Q;
+  only.gyro.white_N = g.gyro.white_N;
+  const auto y = gyro_z_rate_error(only, 3600.0, 16);
+  const double Q = only.gyro.quantization_Q.z(), N = only.gyro.white_N.z();
+  const double n_phase = static_cast<double>(y.size() + 1);
+  for (size_t m : {1, 10, 100, 1000}) {
+    const double tau = 0.1 * m;
+    const double expected = std::sqrt(3 * Q * Q / (tau * tau) + N * N / tau);
+    const double dof = std::min(edf(Noise::kWhiteFm, n_phase, m), (n_phase + 1) * (n_phase - 2 * m) / (2 * (n_phase - m)));
+    EXPECT_TRUE(within_ci(overlapping_adev(y, 0.1, m), expected, dof)) << "tau " << tau;
+  }
+}
+
+TEST(SimNoiseAllan, ThePapersQLeavesNoIncrementZeroWhereRoundingLeftAlmostAll) {
+  // A level static HG1700 (the paper's Q, 6.36 arcsec on x) at 100 Hz: rounding the running angle to the step
+  // Q sqrt(12) = 22 arcsec leaves almost every x increment zero (the issue found 99.4 %); the paper's white Q
+  // leaves none.
+  SimRequest r = perfect_request("static", 60.0, 100.0);
+  r.with_noise = true;
+  r.grade = "hg1700-paper";
+  auto zero_fraction = [&](bool rounding) {
+    ImuGrade g = imu_grade("hg1700-paper");
+    g.gyro.quantization_rounding = rounding;
+    r.custom_grade = g;
+    const SimResult s = simulate(r);
+    size_t zeros = 0;
+    for (const auto& inc : s.imu) zeros += inc.dtheta_b_rad.x() == 0.0;
+    return static_cast<double>(zeros) / s.imu.size();
+  };
+  const double rounded = zero_fraction(true), white = zero_fraction(false);
+  std::printf("[ info ] hg1700 gyro x increments exactly zero: rounding %.4f, the paper's Q %.4f\n", rounded, white);
+  EXPECT_GT(rounded, 0.95);
+  EXPECT_EQ(white, 0.0);
+}
+
+TEST(SimNoiseAllan, RoundingQuantisationFollowsSqrt3QOverTauAboveItsWhiteNoiseDither) {
+  // The ADC option (quantization: rounding): the running integral is rounded with step Q sqrt(12). The
+  // quantisation error is white (std Q) only when something dithers it, as the sensor's own white noise does
+  // (a constant rate alone gives a periodic error): with N^2 dt = 12 Q^2 the Allan variance is
+  // 3 Q^2 / tau^2 + N^2 / tau, the Q term a fifth of it at tau = dt.
   ImuGrade g;
   g.name = "quantisation with white dither";
   const double Q = 2e-6, dt = 0.1;
   g.gyro.quantization_Q = Vec3::Constant(Q);
+  g.gyro.quantization_rounding = true;
   g.gyro.white_N = Vec3::Constant(std::sqrt(12.0 * Q * Q / dt));
   const auto y = gyro_z_rate_error(g, 3600.0, 15);
   const double N = g.gyro.white_N.z();

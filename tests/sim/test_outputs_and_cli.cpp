@@ -126,7 +126,9 @@ TEST(SimCli, BadOptionsFailWithTheFieldNamedAndWriteNothing) {
     std::string args, message;
   };
   const std::vector<Case> cases = {
-      {"--grade hg2000", "--grade: unknown IMU grade 'hg2000': expected one of perfect, hg1700, hg1900, 3dm-gx2"},
+      {"--grade hg2000", "--grade: unknown IMU grade 'hg2000': expected one of perfect, hg1700, hg1900, 3dm-gx2, "
+                         "hg1700-paper, hg1900-paper, 3dm-gx2-paper, 3dm-gx2-paper-q-arcsec, or a grade YAML file"},
+      {"--grade /nonexistent/my_imu.yaml", "--grade: cannot read the grade file"},
       {"--effect lever_arm=1,2", "effect 'lever_arm': expected 3 comma-separated values [m,m,m], found 2"},
       {"--outages 10-20", "--outages: expected START:LENGTH[,START:LENGTH...] in seconds, found '10-20'"},
       {"--scenario nowhere.yaml", "nowhere.yaml: scenario: expected a built-in name"},
@@ -152,4 +154,29 @@ TEST(SimOutputs, AFailedWriteLeavesNoPartialDirectory) {
   const std::string blocker = write_text("blocker_file", "x");
   EXPECT_NE(input_error_of([&] { write_outputs(r, blocker + "/out"); }), "");
   EXPECT_FALSE(fs::exists(dir));
+}
+
+TEST(SimCli, AGradeFileRunsAndABadOneNamesFileLineAndKey) {
+  // --print-grade gives a built-in in the file form; that file as --grade runs; a typo is named with its line.
+  const Cmd printed = run_ldv("--print-grade hg1900-paper");
+  ASSERT_EQ(printed.exit_code, 0) << printed.output;
+  EXPECT_NE(printed.output.find("K_deg_h_sqrt_h: [2.18, 3.126, 1.846]"), std::string::npos) << printed.output;
+  const std::string file = write_text("cli_grade.yaml", printed.output);
+  const fs::path dir = temp_dir("cli_grade");
+  const Cmd ok = run_ldv("--grade " + file + " --seed 3 --duration 5 --scenario static --imu-rate 100 --quiet --out " +
+                         dir.string());
+  ASSERT_EQ(ok.exit_code, 0) << ok.output;
+  EXPECT_EQ(read_kfgins_imu((dir / "imu.txt").string()).size(), 500u);
+  const YAML::Node cfg = YAML::LoadFile((dir / "kfgins.yaml").string());
+  EXPECT_EQ(cfg["ldv"]["simulator"]["grade"].as<std::string>(), "hg1900-paper");
+
+  const std::string bad = write_text("cli_bad_grade.yaml", "name: mine\naccel:\n  N_mps_sqrt_h: 0.1\n  K_mps_h_sqr_h: 1\n");
+  const fs::path none = temp_dir("cli_bad_grade_out");
+  const Cmd c = run_ldv("--grade " + bad + " --duration 5 --out " + none.string());
+  EXPECT_EQ(c.exit_code, 2) << c.output;
+  EXPECT_NE(c.output.find(bad + ":4: unknown key 'accel.K_mps_h_sqr_h' (did you mean 'accel.K_mps_h_sqrt_h'?)"),
+            std::string::npos)
+      << c.output;
+  EXPECT_FALSE(fs::exists(none));
+  EXPECT_EQ(run_ldv("--print-grade hg2000").exit_code, 2);
 }

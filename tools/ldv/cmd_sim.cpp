@@ -24,7 +24,7 @@ struct SimOptions {
   bool no_noise = false;
   bool quiet = false;
   bool list_scenarios = false, list_effects = false;
-  std::string print_scenario;
+  std::string print_scenario, print_grade;
 };
 
 std::vector<sim::Outage> parse_outages(const std::string& text) {
@@ -99,6 +99,18 @@ void run(SimOptions& o, const CLI::App& cmd) {
     std::fputs(text.c_str(), stdout);
     return;
   }
+  if (!o.print_grade.empty()) {
+    const std::string text = sim::builtin_grade_yaml(o.print_grade);
+    if (text.empty()) {
+      std::string names;
+      for (const auto& n : sim::imu_grade_names())
+        if (!sim::builtin_grade_yaml(n).empty()) names += (names.empty() ? "" : ", ") + n;
+      throw InputError("--print-grade", 0, "no file form of the grade '" + o.print_grade + "': expected one of " + names +
+                                               " (the paper's grades; hg1700, hg1900 and 3dm-gx2 are the stand-ins)");
+    }
+    std::fputs(text.c_str(), stdout);
+    return;
+  }
   if (o.out_dir.empty()) throw InputError("--out", 0, "expected an output directory (--out DIR)");
   if (!o.outages_text.empty()) o.req.outages = parse_outages(o.outages_text);
   if (!o.lever_arm.empty()) {
@@ -129,7 +141,11 @@ void add_sim_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("sim", "simulate a vehicle run: truth, IMU increments, GNSS, device streams");
   auto& r = opts->req;
   r.scenario = "drive";
-  cmd->add_option("--grade", r.grade, "IMU grade: perfect | hg1700 | hg1900 | 3dm-gx2")->capture_default_str();
+  cmd->add_option("--grade", r.grade,
+                  "IMU grade: perfect | hg1700 | hg1900 | 3dm-gx2 (the stand-ins) | hg1700-paper | hg1900-paper | "
+                  "3dm-gx2-paper | 3dm-gx2-paper-q-arcsec (the paper's Tables 4-9), or a grade YAML file in the "
+                  "paper's units (sim/README.md; --print-grade NAME shows the keys)")
+      ->capture_default_str();
   cmd->add_option("--seed", r.seed, "random seed (same seed, same data)")->capture_default_str();
   cmd->add_option("--duration", r.duration_s, "run length [s]")->capture_default_str();
   cmd->add_option("--scenario", r.scenario, "built-in scenario name or YAML file (--list-scenarios)")->capture_default_str();
@@ -185,6 +201,7 @@ void add_sim_command(CLI::App& app) {
   cmd->add_flag("--list-scenarios", opts->list_scenarios, "list the built-in scenarios and exit");
   cmd->add_flag("--list-effects", opts->list_effects, "list the effects, units and defaults and exit");
   cmd->add_option("--print-scenario", opts->print_scenario, "print a built-in scenario's YAML and exit");
+  cmd->add_option("--print-grade", opts->print_grade, "print a built-in grade's YAML (the paper's units) and exit");
   cmd->callback([opts, cmd] { run(*opts, *cmd); });
 }
 
