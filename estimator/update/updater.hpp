@@ -21,7 +21,7 @@ namespace ldv::est {
 // The filter as an aid sees it after an IMU sample.
 struct AidContext {
   const NavState& nav;
-  const LinearizationPoint& lp;
+  const LinearizationPoint& lp;  // valid in measure() only (due() is asked before it is taken)
   const StateLayout& layout;
   const FilterOptions& options;
   const Eigen::MatrixXd& P;        // current covariance (flushed to this epoch)
