@@ -17,9 +17,12 @@ std::string write_report(const ReportInputs& given, const std::string& dir) {
   if (!in.nav.empty()) {
     if (in.std_file.empty() && fs::exists(std_path_for(in.nav))) in.std_file = std_path_for(in.nav);
     if (in.innovations.empty() && fs::exists(innovations_path_for(in.nav))) in.innovations = innovations_path_for(in.nav);
-    // A smoothed run: its forward solution and the separation beside it; the innovations are the forward run's.
-    if (in.forward.empty() && fs::exists(forward_path_for(in.nav))) in.forward = forward_path_for(in.nav);
-    if (in.separation.empty() && fs::exists(separation_path_for(in.nav))) in.separation = separation_path_for(in.nav);
+    // A smoothed run (ldv smooth writes both the separation and the forward solution beside it); its
+    // innovations are the forward run's.
+    if (in.separation.empty() && fs::exists(separation_path_for(in.nav))) {
+      in.separation = separation_path_for(in.nav);
+      if (in.forward.empty() && fs::exists(forward_path_for(in.nav))) in.forward = forward_path_for(in.nav);
+    }
     if (in.innovations.empty() && !in.forward.empty() && fs::exists(innovations_path_for(in.forward)))
       in.innovations = innovations_path_for(in.forward);
     const NavSeries nav = NavSeries::from_records(read_nav(in.nav));

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -87,16 +88,17 @@ void print_summary(const char* what, long imu_samples, double t0, double t1, lon
                  f.imu_noise_scale(), std::sqrt(f.imu_noise_scale()), ft.downweighted);
 }
 
-// A forward run written over an earlier smoothed one's name: its separation and forward files would make
-// `ldv report` show a smoothing section that is not this run's.
+// A forward run written over an earlier smoothed one's name: its separation file would make `ldv report` show
+// a smoothing section that is not this run's. Only a file ldv smooth wrote (its header) is removed; the forward
+// files stay (they may be anyone's), and without the separation the report does not take them.
 void remove_stale_smoothing_outputs(const std::string& nav_path) {
-  const std::string base = cli::output_base(nav_path);
-  for (const std::string& f : {base + "_separation.txt", base + "_forward.nav", base + "_forward_std.txt",
-                               base + "_forward_innovations.txt"}) {
-    std::error_code ec;
-    if (fs::is_regular_file(f, ec) && fs::remove(f, ec))
-      std::fprintf(stderr, "ldv nav: removed %s (an earlier ldv smooth's output under this name)\n", f.c_str());
-  }
+  const std::string f = cli::output_base(nav_path) + "_separation.txt";
+  std::error_code ec;
+  if (!fs::is_regular_file(f, ec)) return;
+  std::string first;
+  std::getline(std::ifstream(f) >> std::ws, first);
+  if (first.rfind(cli::kSeparationHeaderStart, 0) == 0 && fs::remove(f, ec))
+    std::fprintf(stderr, "ldv nav: removed %s (an earlier ldv smooth's output under this name)\n", f.c_str());
 }
 
 // The backward pass in numbers, and the separation QC: forward minus smoothed against its expected envelope.

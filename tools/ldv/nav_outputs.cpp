@@ -132,7 +132,8 @@ void write_smoothed(const est::SmoothedRun& run, const est::StateLayout& layout,
   NavWriter nav(nav_path);
   TextOut sd(base + "_std.txt", std_header(layout));
   TextOut sep(base + "_separation.txt",
-              "# week sow sep_n sep_e sep_d [m] sep_vn sep_ve sep_vd [m/s] sep_phi_n sep_phi_e sep_phi_d [deg] "
+              std::string(kSeparationHeaderStart) +
+                  " [m] sep_vn sep_ve sep_vd [m/s] sep_phi_n sep_phi_e sep_phi_d [deg] "
               "std_n std_e std_d [m] std_vn std_ve std_vd [m/s] std_phi_n std_phi_e std_phi_d [deg] (separation = "
               "forward minus smoothed; std = its expected 1-sigma, sqrt(P forward - P smoothed); phi: attitude "
               "error angles about N E D)\n");

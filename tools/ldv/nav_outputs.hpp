@@ -51,6 +51,9 @@ class NavOutputs {
   double next_std_t_ = -1e300;
 };
 
+// The start of FILE_separation.txt's header (how ldv nav recognises an earlier ldv smooth's file).
+inline constexpr const char* kSeparationHeaderStart = "# week sow sep_n sep_e sep_d";
+
 // A smoothed run's files: FILE.nav, FILE_std.txt (the smoothed std and effect estimates, as NavOutputs writes
 // them) and FILE_separation.txt at std_rate_hz.
 void write_smoothed(const est::SmoothedRun& run, const est::StateLayout& layout, const std::string& nav_path,
