@@ -101,3 +101,33 @@ TEST(OutageEngine, TacticalDriftHasTheClosedFormSizeAndStaysInTheEnvelope) {
   }
   EXPECT_GE(static_cast<double>(inside) / total, 0.95);
 }
+
+TEST(OutageEngine, SmoothedGapsTieBothEndsAndAreReportedInTableAndJson) {
+  // `ldv outage --smooth`: per length one forward + RTS run with all of its gaps cut. Inside each gap the largest
+  // smoothed error is far below the forward filter's (the same run's), and within the smoother's own 3 sigma.
+  const auto& s = test::sim_drive("hg1700", 900.0);
+  est::FilterOptions fo = est::options_from_kfgins(s.kfgins);
+  fo.zupt.enabled = false;
+  OutageRunOptions o;
+  o.lengths_s = {60.0, 120.0};
+  o.plan.recovery_s = 60.0;
+  o.smooth = true;
+  const OutageRun run = run_outages(s.imu, s.gnss, s.kfgins, fo, test::truth_series(s), o);
+  ASSERT_GE(run.outages.size(), 4u);
+  for (const OutageResult& r : run.outages) {
+    ASSERT_TRUE(r.smoothed.has_value());
+    const SmoothedGap& g = *r.smoothed;
+    EXPECT_GT(g.samples, static_cast<int>(r.window.length_s / o.eval_period_s) - 2);
+    EXPECT_LT(g.max_horizontal_m, 0.5 * g.forward_max_horizontal_m) << r.window.start_s;
+    EXPECT_LT(g.max_horizontal_m, 3.0 * g.std_horizontal_at_max_m + 0.05) << r.window.start_s;
+  }
+  const std::string json = outage_json(run, summarise_outages(run));
+  EXPECT_NE(json.find("\"smoothed\""), std::string::npos);
+  std::FILE* f = std::tmpfile();
+  print_outage_table(f, run, summarise_outages(run));
+  std::rewind(f);
+  char buf[8192] = {};
+  const size_t n = std::fread(buf, 1, sizeof buf - 1, f);
+  std::fclose(f);
+  EXPECT_NE(std::string(buf, n).find("Smoothed (forward + RTS backward"), std::string::npos);
+}
