@@ -91,6 +91,7 @@ std::map<std::string, Command> commands() {
   const std::string cfg = (d / "drive" / "kfgins.yaml").string(), nav = (d / "drive" / "truth.nav").string();
   return {
       {"nav", {{"nav", "--kfgins-config", cfg, "--out", (d / "o.nav").string(), "--quiet"}}},
+      {"smooth", {{"smooth", "--kfgins-config", cfg, "--out", (d / "s.nav").string(), "--quiet"}}},
       {"outage",
        {{"outage", "--kfgins-config", cfg, "--lengths", "5", "--converge", "10", "--recovery", "5", "--quiet"}}},
       {"diagnose", {{"diagnose", "--kfgins-config", cfg, "--max-add", "0"}}},
