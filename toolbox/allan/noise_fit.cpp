@@ -97,7 +97,7 @@ LinearFit fit_with_shape(Basis b, int shaped, const Solver& solve, double lo, do
     const double ls = std::log(lo) + g * step, c2 = chi2_at(ls);
     if (c2 < best_chi2) best_chi2 = c2, best_ls = ls;
   }
-  double a = best_ls - step, z = best_ls + step;
+  double a = std::max(best_ls - step, std::log(lo)), z = std::min(best_ls + step, std::log(hi));
   const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
   double x1 = z - phi * (z - a), x2 = a + phi * (z - a), f1 = chi2_at(x1), f2 = chi2_at(x2);
   for (int it = 0; it < 20; ++it) {
@@ -113,6 +113,9 @@ LinearFit fit_with_shape(Basis b, int shaped, const Solver& solve, double lo, do
   f.c.push_back(b.shapes[shaped]);  // the shape rides along at the end
   return f;
 }
+
+// A Gauss-Markov term whose T is this close to its lower bound is taken to be at the bound.
+constexpr double kAtBound = 1.02;
 
 struct Model {
   Basis basis;
@@ -137,13 +140,25 @@ Model fit_model(std::vector<ModelTerm> terms, const Data& d, const Solver& solve
     m.fit = solve(m.basis);
     return m;
   }
-  // GM: the hump sits at 1.89 T, so T from tau_min/2 to tau_max/2 covers every visible hump.
+  // GM: the hump sits at 1.89 T, so T up to tau_max/2 covers every visible hump. From below, T is
+  // bounded at kGaussMarkovMinResolution shortest taus (gm_min_time_constant).
   // Sinusoid: the first peak of its Allan deviation is at tau = 0.371 / f0.
   const bool gm = terms[shaped] == ModelTerm::kGaussMarkov;
-  const double lo = gm ? 0.5 * tmin : 0.371 / tmax, hi = gm ? 0.5 * tmax : 0.371 / tmin;
+  const double lo = gm ? gm_min_time_constant(tmin) : 0.371 / tmax, hi = gm ? std::max(0.5 * tmax, lo) : 0.371 / tmin;
   m.fit = fit_with_shape(m.basis, shaped, solve, lo, hi);
   m.basis.shapes[shaped] = m.fit.c.back();
   m.fit.c.pop_back();
+  if (gm && m.fit.c[shaped] > 0 && m.basis.shapes[shaped] <= lo * kAtBound) {
+    // Still pulled to the shortest T: the term is white at this resolution, i.e. white noise of
+    // density 2 sigma^2 T. Fold it into N: refit without it, the GM absent (coefficient 0).
+    Basis without = m.basis;
+    without.terms.erase(without.terms.begin() + shaped);
+    without.shapes.erase(without.shapes.begin() + shaped);
+    LinearFit f = solve(without);
+    f.c.insert(f.c.begin() + shaped, 0.0);
+    m.fit = std::move(f);
+    m.basis.shapes[shaped] = lo;
+  }
   return m;
 }
 
@@ -297,6 +312,8 @@ double NoiseFit::model_avar(double tau) const {
   }
   return m;
 }
+
+double gm_min_time_constant(double resolution_s) { return kGaussMarkovMinResolution * resolution_s; }
 
 void set_term_interval(TermEstimate& t, double c, double sigma_c, double z) {
   t.value = std::sqrt(c);

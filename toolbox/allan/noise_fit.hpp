@@ -75,6 +75,17 @@ struct NoiseFit {
   double model_avar(double tau_s) const;  // fitted total Allan variance
 };
 
+// Shortest Gauss-Markov time constant a fit accepts, in units of its resolution (the shortest tau of
+// the Allan-curve fit, the block length of the likelihood fit). A GM with T well below the
+// resolution is white noise there: flat spectrum up to 1/(2 pi T), Allan variance 2 sigma^2 T / tau
+// at tau >> T, i.e. white noise of density 2 sigma^2 T, so it can only trade against N (on white
+// noise alone it took 25-65 % of N^2 at T of a few samples). At 5 resolution steps its Allan hump
+// (1.89 T) sits a decade above the resolution and its spectral corner 1/(2 pi T) at 3 % of the
+// sampling band, so its shape is visible over the rest. A fit still pulled to this bound folds the
+// term into N (refit without it) and reports the GM absent (value 0, not resolved, T at the bound).
+constexpr double kGaussMarkovMinResolution = 5.0;
+double gm_min_time_constant(double resolution_s);
+
 // Value, 1-sigma and interval of a term from its squared coefficient c >= 0 and the 1-sigma
 // sigma_c of c; z: the normal quantile of the interval.
 void set_term_interval(TermEstimate& t, double c, double sigma_c, double z);

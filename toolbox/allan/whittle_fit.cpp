@@ -225,8 +225,10 @@ Solution maximise(Model& mod, const Periodogram& p, const Eigen::VectorXd& start
     set_densities(mod, p);
     return maximise_at_fixed_shape(mod, p, start);
   };
-  // The Gauss-Markov hump sits at 1.89 T: T from two blocks to a third of the record.
-  const double lo = std::log(2.0 * p.tau_b), hi = std::log(p.blocks * p.tau_b / 3.0);
+  // The Gauss-Markov hump sits at 1.89 T: T up to a third of the record; from below, T is bounded
+  // at a few blocks (gm_min_time_constant, noise_fit.hpp: shorter, the term is white in the blocks).
+  const double lo = std::log(gm_min_time_constant(p.tau_b)),
+               hi = std::max(lo, std::log(p.blocks * p.tau_b / 3.0));
   const int grid = 24;
   const double step = (hi - lo) / (grid - 1);
   double best_ln = lo, best_l = -std::numeric_limits<double>::infinity();
@@ -235,8 +237,8 @@ Solution maximise(Model& mod, const Periodogram& p, const Eigen::VectorXd& start
     if (l > best_l) best_l = l, best_ln = lo + g * step;
   }
   double refined_l = 0.0;
-  const double refined_ln = golden_section_max([&](double x) { return at(x).log_likelihood; }, best_ln - step,
-                                               best_ln + step, 30, &refined_l);
+  const double refined_ln = golden_section_max([&](double x) { return at(x).log_likelihood; },
+                                               std::max(lo, best_ln - step), std::min(hi, best_ln + step), 30, &refined_l);
   return at(refined_l >= best_l ? refined_ln : best_ln);
 }
 
@@ -294,7 +296,7 @@ double profile_log_likelihood(const Model& mod, const Periodogram& p, const Solu
   const double ln_t0 = std::log(std::max(mod.gm_t_s, 1e-300));
   if (!has_gm) return at(ln_t0);
   double l_searched = 0.0;
-  golden_section_max(at, ln_t0 - 1.0, ln_t0 + 1.0, 12, &l_searched);
+  golden_section_max(at, std::max(ln_t0 - 1.0, std::log(gm_min_time_constant(p.tau_b))), ln_t0 + 1.0, 12, &l_searched);
   return std::max(l_searched, at(ln_t0));
 }
 
@@ -400,9 +402,40 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
       reach = std::max(reach, p.mean_ordinate[b] / std::max(mod.density(b, j), 1e-300));
     start(j) = std::max(v * v, 1e-4 * reach);
   }
-  const Solution sol = maximise(mod, p, start, gm_index);
+  Solution sol = maximise(mod, p, start, gm_index);
   if (!sol.c.allFinite() || !std::isfinite(sol.log_likelihood)) {
     throw std::invalid_argument("likelihood fit: no finite maximum (the curve fit is kept)");
+  }
+  // A Gauss-Markov term still pulled to its shortest T is white noise in the blocks (density
+  // 2 sigma^2 T): fold it into N by refitting without it, and report it absent (value 0, T at the
+  // bound, the upper end of its interval from its information there).
+  const double gm_t_min = gm_min_time_constant(p.tau_b);
+  bool gm_folded = false;
+  double gm_folded_sigma_c = 0.0;
+  if (gm_index >= 0 && sol.c(gm_index) > 0 && mod.gm_t_s <= gm_t_min * 1.02 &&
+      std::find(mod.terms.begin(), mod.terms.end(), ModelTerm::kN) != mod.terms.end()) {
+    Model without = mod;
+    without.terms.erase(without.terms.begin() + gm_index);
+    Eigen::VectorXd start_without(without.terms.size());
+    for (int j = 0, i = 0; j < static_cast<int>(mod.terms.size()); ++j)
+      if (j != gm_index) start_without(i++) = std::max(sol.c(j), start(j));
+    Solution folded = maximise(without, p, start_without, -1);
+    if (folded.c.allFinite() && std::isfinite(folded.log_likelihood)) {
+      mod.gm_t_s = gm_t_min;
+      set_densities(mod, p);
+      Eigen::VectorXd c_full(mod.terms.size());
+      for (int j = 0, i = 0; j < static_cast<int>(mod.terms.size()); ++j) c_full(j) = j == gm_index ? 0.0 : folded.c(i++);
+      std::vector<int> with;
+      for (int j = 0; j < c_full.size(); ++j)
+        if (c_full(j) > 0 && j != gm_index) with.push_back(j);
+      with.push_back(gm_index);
+      gm_folded_sigma_c =
+          std::sqrt(std::max(0.0, fisher_covariance(mod, p, c_full, with, gm_index)(with.size() - 1, with.size() - 1)));
+      mod = std::move(without);
+      sol = std::move(folded);
+      gm_index = -1;
+      gm_folded = true;
+    }
   }
 
   NoiseFit out = curve;
@@ -483,6 +516,14 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
     TermEstimate& t = out[mod.terms[j]];
     t.resolved =
         sol.c(j) > 2.0 * std::max(sigma_c[j], sigma_free[j]) && dominant_somewhere(mod.terms[j], sol.c(j), t.shape);
+  }
+  if (gm_folded) {  // folded into N: absent, with only an upper end to its interval
+    TermEstimate& t = out[ModelTerm::kGaussMarkov];
+    t.in_model = true;
+    t.shape = gm_t_min;
+    t.shape_sigma = 0.0;
+    set_term_interval(t, 0.0, gm_folded_sigma_c, z);
+    t.resolved = false;
   }
   for (ModelTerm term : mod.terms) {
     const TermEstimate& t = out[term];
