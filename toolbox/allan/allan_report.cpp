@@ -44,6 +44,34 @@ const TermEstimate& reported(const NoiseFit& f, ModelTerm mt) {
   return mt == ModelTerm::kB && f[ModelTerm::kGaussMarkov].in_model ? f[ModelTerm::kGaussMarkov] : f[mt];
 }
 
+std::string model_label(const std::string& m) { return m == "gauss_markov" ? "Gauss-Markov" : "flat B"; }
+
+void print_bias_model(std::FILE* out, const BiasModelChoice& c) {
+  if (c.criterion == "BIC") {
+    std::fprintf(out, "  bias model: %s, chosen by BIC (flat B: lnL %.6g, %d parameters, BIC %.6g; Gauss-Markov: lnL %.6g, "
+                 "%d parameters, BIC %.6g; likelihood ratio %.3g, %ld ordinates)\n",
+                 model_label(c.chosen).c_str(), c.flat.log_likelihood, c.flat.parameters, c.flat.bic,
+                 c.gauss_markov.log_likelihood, c.gauss_markov.parameters, c.gauss_markov.bic, c.likelihood_ratio,
+                 c.observations);
+  } else if (c.requested == "auto") {
+    std::fprintf(out, "  bias model: %s, not chosen by the data (%s)\n", model_label(c.chosen).c_str(), c.note.c_str());
+  } else {
+    std::fprintf(out, "  bias model: %s, as asked (--bias-model %s)\n", model_label(c.chosen).c_str(),
+                 c.requested == "gauss_markov" ? "gm" : "flat");
+  }
+}
+
+std::string candidate_json(const BiasModelCandidate& c) {
+  std::string o = std::string("{\"fitted\": ") + (c.fitted ? "true" : "false");
+  if (c.fitted) {
+    o += ", \"log_likelihood\": " + num(c.log_likelihood) + ", \"parameters\": " + std::to_string(c.parameters) +
+         ", \"bic\": " + num(c.bic) + ", \"aic\": " + num(c.aic);
+  } else {
+    o += ", \"error\": " + quoted(c.error);
+  }
+  return o + "}";
+}
+
 }  // namespace
 
 BiasProcess bias_process(const NoiseFit& fit) {
@@ -70,6 +98,7 @@ void print_tables(std::FILE* out, const std::vector<ChannelResult>& results) {
       std::fprintf(out, "  fit to the Allan variance curve (%s)%s%s\n", f.gls ? "generalized LS" : "weighted LS",
                    r.likelihood_error.empty() ? "" : "; no likelihood fit: ", r.likelihood_error.c_str());
     }
+    if (r.bias_model) print_bias_model(out, *r.bias_model);
     std::fprintf(out, "  %-4s %-15s %12s %12s %25s  %-9s %12s %12s\n", "term", "unit", "value", "sigma", "95% interval",
                  "resolved", "slope line", r.curve_fit ? "curve fit" : "");
     for (int i = 0; i < 5; ++i) {
@@ -168,6 +197,21 @@ void write_json(const std::string& path, const std::string& input, const std::ve
       o << ",\n      \"B_tau_s\": " << num(f.b_tau_s) << ", \"B_model\": " << quoted(gm ? "gauss_markov" : "flat")
         << ", \"B_T_s\": " << num(gm ? f[ModelTerm::kGaussMarkov].shape : 0.0)
         << ", \"B_T_s_sigma\": " << num(gm ? f[ModelTerm::kGaussMarkov].shape_sigma : 0.0);
+      if (r.bias_model) {  // how B_model was chosen (README.md, "Bias model")
+        const BiasModelChoice& bm = *r.bias_model;
+        o << ",\n      \"bias_model_selection\": {\"requested\": " << quoted(bm.requested)
+          << ", \"criterion\": " << quoted(bm.criterion) << ", \"chosen\": " << quoted(bm.chosen)
+          << ", \"note\": " << quoted(bm.note);
+        if (bm.flat.fitted || !bm.flat.error.empty() || bm.gauss_markov.fitted || !bm.gauss_markov.error.empty()) {
+          o << ", \"observations\": " << bm.observations << ", \"taper_variance_factor\": " << num(bm.taper_variance_factor);
+          if (bm.criterion == "BIC") {
+            o << ", \"likelihood_ratio\": " << num(bm.likelihood_ratio)
+              << ", \"delta_bic\": " << num(bm.flat.bic - bm.gauss_markov.bic);
+          }
+          o << ", \"flat\": " << candidate_json(bm.flat) << ", \"gauss_markov\": " << candidate_json(bm.gauss_markov);
+        }
+        o << "}";
+      }
       const TermEstimate& sine = f[ModelTerm::kSinusoid];
       if (sine.in_model) {
         o << ",\n      \"sine_amplitude\": " << num(sine.value) << ", \"sine_amplitude_sigma\": " << num(sine.sigma)

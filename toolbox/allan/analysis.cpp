@@ -37,6 +37,48 @@ std::vector<long> analysis_factors(const AnalysisOptions& opt, long n_phase, dou
 
 namespace {
 
+// The curve fit and, for inertial rates (not clock phase, whose noise types the model does not
+// span), its refinement by the likelihood of the raw data, which keeps what the curve condenses away.
+struct FitAttempt {
+  std::optional<NoiseFit> curve, refined;
+  std::optional<WhittleSummary> summary;
+  std::string fit_error, likelihood_error;
+};
+
+FitAttempt fit_channel(const PhaseSeries& s, const std::vector<StabilityPoint>& weighted, const FitOptions& fo,
+                       bool with_likelihood) {
+  FitAttempt a;
+  try {
+    a.curve = fit_noise_model(weighted, fo);
+  } catch (const std::invalid_argument& e) {
+    a.fit_error = e.what();
+    return a;
+  }
+  if (!with_likelihood) return a;
+  try {
+    WhittleSummary summary;
+    a.refined = whittle_fit(s, *a.curve, fo, fo.likelihood_block_s, &summary);
+    a.summary = summary;
+  } catch (const std::invalid_argument& e) {
+    a.likelihood_error = e.what();
+  }
+  return a;
+}
+
+BiasModelCandidate candidate(const FitAttempt& a) {
+  BiasModelCandidate c;
+  c.fitted = a.refined.has_value();
+  c.error = !a.fit_error.empty() ? a.fit_error : a.likelihood_error;
+  if (!c.fitted) return c;
+  const WhittleSummary& w = *a.summary;
+  const double deviance = -2.0 * w.log_likelihood / w.taper_variance_factor;
+  c.log_likelihood = w.log_likelihood;
+  c.parameters = w.parameters;
+  c.bic = deviance + w.parameters * std::log(static_cast<double>(std::max(2L, w.ordinates)));
+  c.aic = deviance + 2.0 * w.parameters;
+  return c;
+}
+
 ChannelResult analyze_channel(const PhaseSeries& s, const AnalysisOptions& opt) {
   ChannelResult r;
   r.name = s.name;
@@ -51,30 +93,71 @@ ChannelResult analyze_channel(const PhaseSeries& s, const AnalysisOptions& opt) 
     r.extra = stability(s, *opt.extra, analysis_factors(opt, n_phase, s.tau0_s, *opt.extra), opt.confidence);
   }
   if (opt.fit) {
-    try {
-      // Weights from the EDF: a noise type misidentified on a short averaged series (B1 ratio) can
-      // claim white-PM-like degrees of freedom at long tau and pull the fit; never weight a point
-      // above what white FM noise (angle/velocity random walk) would give it.
-      std::vector<StabilityPoint> weighted = r.oadev;
-      for (auto& p : weighted) p.edf = std::min(p.edf, greenhall_edf(Deviation::kOadev, 0, p.point.m, n_phase));
-      r.fit = fit_noise_model(weighted, opt.fit_options);
-    } catch (const std::invalid_argument& e) {
-      r.fit_error = e.what();
-    }
-    // Inertial rates (not clock phase, whose noise types the model does not span): refine by the
-    // likelihood of the raw data, which keeps what the curve condenses away.
+    // Weights from the EDF: a noise type misidentified on a short averaged series (B1 ratio) can
+    // claim white-PM-like degrees of freedom at long tau and pull the fit; never weight a point
+    // above what white FM noise (angle/velocity random walk) would give it.
+    std::vector<StabilityPoint> weighted = r.oadev;
+    for (auto& p : weighted) p.edf = std::min(p.edf, greenhall_edf(Deviation::kOadev, 0, p.point.m, n_phase));
     const FitOptions& fo = opt.fit_options;
-    if (r.fit && fo.likelihood && s.source == DataKind::kFrequency && !fo.sinusoid) {
-      try {
-        WhittleSummary summary;
-        NoiseFit refined = whittle_fit(s, *r.fit, fo, fo.likelihood_block_s, &summary);
-        r.curve_fit = std::move(r.fit);
-        r.fit = std::move(refined);
-        r.likelihood = summary;
-        r.information = record_information(*r.fit, s.tau0_s, r.samples, fo.likelihood_block_s, fo.target_precision);
-      } catch (const std::invalid_argument& e) {
-        r.likelihood_error = e.what();
+    const bool with_likelihood = fo.likelihood && s.source == DataKind::kFrequency && !fo.sinusoid;
+    BiasModelChoice choice;
+    choice.requested = fo.gauss_markov ? "gauss_markov" : fo.choose_bias_model ? "auto" : "flat";
+    choice.criterion = "none";
+    FitAttempt chosen = fit_channel(s, weighted, fo, with_likelihood);
+    choice.chosen = fo.gauss_markov ? "gauss_markov" : "flat";
+    if (choice.requested == "auto") {
+      if (!fo.b) {
+        choice.note = "no bias term in the model (--terms without B)";
+      } else if (!with_likelihood) {
+        choice.note = s.source != DataKind::kFrequency ? "phase input: no likelihood fit, flat B"
+                      : fo.sinusoid                   ? "with a sinusoid: no likelihood fit, flat B"
+                                                      : "curve fit only: flat B";
+      } else if (!chosen.refined) {
+        choice.note = "no likelihood fit of the flat B: " + (chosen.fit_error.empty() ? chosen.likelihood_error : chosen.fit_error);
+        choice.flat = candidate(chosen);
+      } else {
+        // Both models on the same periodogram (same blocks, same ordinates): their Whittle
+        // log-likelihoods compare directly. BIC (penalty ln n per parameter, n the ordinates, about 13
+        // for hours of data) rather than AIC (2): the GM has one parameter more than the flat B (its
+        // T), and AIC would take a GM that is not there whenever chance lifts the likelihood by 1
+        // (about one record in six); BIC is consistent (the true model wins as the record grows).
+        FitOptions g = fo;
+        g.gauss_markov = true;
+        FitAttempt gm = fit_channel(s, weighted, g, with_likelihood);
+        choice.flat = candidate(chosen);
+        choice.gauss_markov = candidate(gm);
+        choice.observations = chosen.summary->ordinates;
+        choice.taper_variance_factor = chosen.summary->taper_variance_factor;
+        if (choice.gauss_markov.fitted) {
+          choice.criterion = "BIC";
+          choice.likelihood_ratio =
+              2.0 * (choice.gauss_markov.log_likelihood - choice.flat.log_likelihood) / choice.taper_variance_factor;
+          if (choice.gauss_markov.bic < choice.flat.bic) {
+            chosen = std::move(gm);
+            choice.chosen = "gauss_markov";
+          }
+        } else {
+          choice.note = "Gauss-Markov fit failed (" + choice.gauss_markov.error + "): flat B";
+        }
       }
+    }
+    if (chosen.curve) {
+      r.bias_model = choice;
+      if (chosen.refined) {
+        r.curve_fit = std::move(chosen.curve);
+        r.fit = std::move(chosen.refined);
+        r.likelihood = chosen.summary;
+        try {
+          r.information = record_information(*r.fit, s.tau0_s, r.samples, fo.likelihood_block_s, fo.target_precision);
+        } catch (const std::invalid_argument& e) {
+          r.likelihood_error = e.what();
+        }
+      } else {
+        r.fit = std::move(chosen.curve);
+        r.likelihood_error = chosen.likelihood_error;
+      }
+    } else {
+      r.fit_error = chosen.fit_error;
     }
   }
   return r;

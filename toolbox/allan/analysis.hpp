@@ -27,6 +27,31 @@ struct AnalysisOptions {
   int threads = 0;                       // 0: hardware concurrency
 };
 
+// One bias model's likelihood fit, as the choice between them saw it.
+struct BiasModelCandidate {
+  bool fitted = false;        // false: its fit failed (`error`)
+  std::string error;
+  double log_likelihood = 0.0;  // Whittle log-likelihood of the tapered data (WhittleSummary)
+  int parameters = 0;           // free parameters (WhittleSummary::parameters)
+  double bic = 0.0, aic = 0.0;  // -2 lnL / taper factor + k ln(ordinates), resp. + 2k
+};
+
+// How the bias model (flat B or Gauss-Markov) was chosen. With FitOptions::choose_bias_model (the
+// default) and rate input with the likelihood fit, both models are fitted to the same periodogram
+// and the lower BIC wins (ties: the flat B, which has one parameter fewer); otherwise the model asked
+// for (or the flat B when the likelihood fit does not run) and `note` says why.
+struct BiasModelChoice {
+  std::string requested;  // "auto" | "flat" | "gauss_markov"
+  std::string criterion;  // "BIC" when chosen by the data, else "none"
+  std::string chosen;     // "flat" | "gauss_markov"
+  std::string note;       // why not chosen by the data ("" when it was)
+  long observations = 0;  // periodogram ordinates: the n of the BIC
+  double taper_variance_factor = 1.0;
+  // 2 (lnL_gm - lnL_flat) / taper factor: the likelihood-ratio statistic (> 0 favours the GM)
+  double likelihood_ratio = 0.0;
+  BiasModelCandidate flat, gauss_markov;
+};
+
 struct ChannelResult {
   std::string name, unit;
   double tau0_s = 0.0;
@@ -43,6 +68,7 @@ struct ChannelResult {
   std::optional<WhittleSummary> likelihood;
   std::optional<RecordInformation> information;  // with the likelihood fit: bounds, record needed
   std::string likelihood_error;
+  std::optional<BiasModelChoice> bias_model;  // with a fit: how its bias model was chosen
 };
 
 // Averaging factors for a channel: explicit taus rounded to whole samples (std::invalid_argument

@@ -386,6 +386,7 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
     mod.gm_t_s = curve[ModelTerm::kGaussMarkov].shape;
   }
   if (mod.terms.empty()) throw std::invalid_argument("likelihood fit: none of N, B, K in the model");
+  const int parameters = static_cast<int>(mod.terms.size()) + (gm_index >= 0 ? 1 : 0);
   const double q = curve[ModelTerm::kQ].in_model ? curve[ModelTerm::kQ].value : 0.0;
   mod.fixed.resize(static_cast<long>(p.nu.size()));
   for (size_t b = 0; b < p.nu.size(); ++b)
@@ -537,6 +538,8 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
     summary->ordinates = p.ordinates;
     summary->log_likelihood = sol.log_likelihood;
     summary->iterations = sol.iterations;
+    summary->parameters = parameters;
+    summary->taper_variance_factor = p.taper.variance_factor;
   }
   return out;
 }

@@ -24,6 +24,13 @@ struct WhittleSummary {
   long ordinates = 0;    // Fourier ordinates used (frequency 0 and Nyquist excluded)
   double log_likelihood = 0.0;
   int iterations = 0;  // scoring iterations at the final Gauss-Markov time constant
+  // Free parameters of the model as fitted: the estimated densities (N, B or GM sigma, K) plus the
+  // GM time constant when the model has a GM (counted even when the GM came out absent / folded:
+  // the model searched over it). Q (held) and R (not a density) are not counted.
+  int parameters = 0;
+  // The taper's variance factor (n sum h^4 / (sum h^2)^2, about 1.12): the tapered log-likelihood is
+  // that much sharper than the information it holds, so likelihood ratios are divided by it.
+  double taper_variance_factor = 1.0;
 };
 
 // `curve`: the Allan-curve fit of the same series (start values, Q and R, slope lines, misfit).

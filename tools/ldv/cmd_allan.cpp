@@ -24,7 +24,8 @@ struct AllanArgs {
   std::string time_column;
   double rate = 0, tau0 = 0, nominal = 0, max_tau = 0, confidence = ldv::allan::kOneSigmaConfidence;
   int per_decade = 10, threads = 0;
-  bool gauss_markov = false, sinusoid = false, no_fit = false, curve_only = false;
+  std::string bias_model = "auto";
+  bool gauss_markov = false, flat_bias = false, sinusoid = false, no_fit = false, curve_only = false;
   double likelihood_block_s = 0.02, target_precision = 0.1;
 };
 
@@ -70,7 +71,10 @@ void run_allan(const AllanArgs& a) {
   f.b = a.terms.find('B') != std::string::npos;
   f.k = a.terms.find('K') != std::string::npos;
   f.r = a.terms.find('R') != std::string::npos;
-  f.gauss_markov = a.gauss_markov;
+  // --gauss-markov / --flat-bias are shorthands of --bias-model gm / flat (CLI11 keeps them exclusive).
+  const std::string bias_model = a.gauss_markov ? "gm" : a.flat_bias ? "flat" : a.bias_model;
+  f.gauss_markov = bias_model == "gm";
+  f.choose_bias_model = bias_model == "auto";
   f.sinusoid = a.sinusoid;
   f.likelihood = !a.curve_only;
   f.likelihood_block_s = a.likelihood_block_s;
@@ -146,7 +150,18 @@ void add_allan_command(CLI::App& app) {
   cmd->add_option("--confidence", args->confidence, "confidence of the deviation intervals (default 0.683, Stable32's)")
       ->check(CLI::Range(0.01, 0.9999));
   cmd->add_option("--terms", args->terms, "noise terms to fit, any of QNBKR (default QNBKR)");
-  cmd->add_flag("--gauss-markov", args->gauss_markov, "model the bias instability as Gauss-Markov (sigma, T) instead of flat B");
+  auto bias_model =
+      cmd->add_option("--bias-model", args->bias_model,
+                      "bias instability model: auto | flat | gm (default auto: for rate input both the flat B and the "
+                      "Gauss-Markov (sigma, T) are fitted by the likelihood and the lower BIC wins, reported in the "
+                      "table and the JSON's bias_model_selection; the flat B without the likelihood fit)")
+          ->check(CLI::IsMember({"auto", "flat", "gm"}));
+  auto gm_flag = cmd->add_flag("--gauss-markov", args->gauss_markov,
+                               "model the bias instability as Gauss-Markov (sigma, T) instead of flat B (= --bias-model gm)")
+                     ->excludes(bias_model);
+  cmd->add_flag("--flat-bias", args->flat_bias, "model the bias instability as the flat B (= --bias-model flat)")
+      ->excludes(bias_model)
+      ->excludes(gm_flag);
   cmd->add_flag("--sinusoid", args->sinusoid, "add a sinusoidal term to the fit");
   cmd->add_flag("--no-fit", args->no_fit, "deviations only");
   cmd->add_flag("--curve-only", args->curve_only,
