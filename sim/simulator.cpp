@@ -351,6 +351,27 @@ SimResult simulate(const SimRequest& req, const std::function<void(double)>& pro
   ldv["simulator"]["seed"] = req.seed;
   ldv["simulator"]["scenario"] = scenario.name;
   ldv["gnss_latency_s"] = req.gnss_latency_s;
+  // geoldv51's moving bias per term (estimator/run/run_navigation.cpp): B with its time constant (the triad's
+  // mean over the axes that have one), K, |R|, SI.
+  const auto write_terms = [&](const TriadErrorModel& t, const std::string& prefix, const char* gm, const char* rw,
+                               const char* ramp) {
+    auto seq = [](const Vec3& v) {
+      YAML::Node n(YAML::NodeType::Sequence);
+      for (int i = 0; i < 3; ++i) n.push_back(v[i]);
+      n.SetStyle(YAML::EmitterStyle::Flow);
+      return n;
+    };
+    double sum = 0;
+    int count = 0;
+    for (int i = 0; i < 3; ++i)
+      if (t.instability_B[i] > 0) sum += t.instability_T_s[i], ++count;
+    ldv[prefix + gm] = seq(t.instability_B);
+    ldv[prefix + "gm_time_s"] = count > 0 ? sum / count : 3600.0;
+    ldv[prefix + rw] = seq(t.rate_rw_K);
+    ldv[prefix + ramp] = seq(t.ramp_R.cwiseAbs());
+  };
+  write_terms(grade.gyro, "moving_bias_gyro_", "gm_rad_s", "rw_rad_s_sqrt_s", "ramp_rad_s2");
+  write_terms(grade.accel, "moving_bias_accel_", "gm_mps2", "rw_mps2_sqrt_s", "ramp_mps3");
   for (const auto& name : fx.declared) {
     YAML::Node seq(YAML::NodeType::Sequence);
     for (double x : fx.values.at(name).si) seq.push_back(x);

@@ -92,6 +92,11 @@ const std::vector<std::string> kLdvKeys = {
     "model", "add", "drop", "cov_period_s", "gate_probability", "kfgins_compatible", "step_confirm_s",
     "adapt_imu_noise", "use_gnss_velocity", "zupt", "history_s", "align_speed_mps", "align_hypotheses",
     "gnss_bias_sigma_m", "gnss_bias_tau_s", "time_offset_s",
+    // geoldv51's moving bias per term (SI; estimator/README.md "State layout"), instead of imunoise's one
+    // Gauss-Markov: B with its time constant, K, R
+    "moving_bias_gyro_gm_rad_s", "moving_bias_gyro_gm_time_s", "moving_bias_gyro_rw_rad_s_sqrt_s",
+    "moving_bias_gyro_ramp_rad_s2", "moving_bias_accel_gm_mps2", "moving_bias_accel_gm_time_s",
+    "moving_bias_accel_rw_mps2_sqrt_s", "moving_bias_accel_ramp_mps3",
     // land-vehicle aids (estimator/options.hpp AidOptions)
     "aids", "vehicle_mounting_deg", "nhc_std_mps", "odometer_std_mps", "odometer_lever_arm_m", "odometer_scale",
     // inputs

@@ -80,6 +80,17 @@ FilterOptions options_from_kfgins(const KfGinsConfig& cfg) {
   };
   o.aids.mounting_rpy_rad = vec3_key("vehicle_mounting_deg", o.aids.mounting_rpy_rad, kDegToRad);
   o.odometer_lever_arm.init = vec3_key("odometer_lever_arm_m", o.odometer_lever_arm.init, 1.0);
+  // geoldv51's moving bias per term, where the configuration has them (ldv sim writes the grade's): the
+  // Gauss-Markov is B alone (imunoise's gbstd merges K into it), K drives the random-walk states, R is the
+  // ramp rate's prior. Each key is optional.
+  for (auto [mb, prefix] : {std::pair{&o.gyro_moving_bias, std::string("moving_bias_gyro_")},
+                            std::pair{&o.accel_moving_bias, std::string("moving_bias_accel_")}}) {
+    const bool gyro = prefix == "moving_bias_gyro_";
+    mb->gm_sigma = vec3_key((prefix + (gyro ? "gm_rad_s" : "gm_mps2")).c_str(), mb->gm_sigma, 1.0);
+    mb->rw_density = vec3_key((prefix + (gyro ? "rw_rad_s_sqrt_s" : "rw_mps2_sqrt_s")).c_str(), mb->rw_density, 1.0);
+    mb->ramp_rate_std = vec3_key((prefix + (gyro ? "ramp_rad_s2" : "ramp_mps3")).c_str(), mb->ramp_rate_std, 1.0);
+    mb->gm_corr_time_s = ldv_key<double>(cfg, (prefix + "gm_time_s").c_str(), mb->gm_corr_time_s);
+  }
   o.aids.nhc_std_mps = ldv_key<double>(cfg, "nhc_std_mps", o.aids.nhc_std_mps);
   o.aids.odometer_std_mps = ldv_key<double>(cfg, "odometer_std_mps", o.aids.odometer_std_mps);
   o.odometer_scale_init = ldv_key<double>(cfg, "odometer_scale", o.odometer_scale_init);

@@ -203,3 +203,42 @@ TEST(Faults, AZeroBiasSigmaInTheConfigKeepsGeoLdv51Healthy) {
 
 }  // namespace
 }  // namespace ldv::est
+
+namespace ldv::est {
+namespace {
+
+// The configuration ldv sim writes for a grade carries geoldv51's moving bias per term (B with its time
+// constant, K, R), and options_from_kfgins reads them: the Gauss-Markov is B alone (imunoise's gbstd merges K
+// into it), K drives the random walk, R is the ramp rate's prior. A malformed value names its key and line.
+TEST(Faults, TheGradesMovingBiasTermsReachGeoLdv51) {
+  sim::SimRequest req;
+  req.grade = "hg1900-paper";  // accel: Q + B (T 17, 28, 33 s) + K + R (no R on y)
+  req.duration_s = 2.0;
+  req.scenario = "static";
+  const sim::SimResult sim = sim::simulate(req);
+  const FilterOptions o = options_from_kfgins(sim.kfgins);
+  const sim::ImuGrade g = sim::imu_grade("hg1900-paper");
+  EXPECT_EQ(o.accel_moving_bias.gm_sigma, g.accel.instability_B);
+  EXPECT_NEAR(o.accel_moving_bias.gm_corr_time_s, (17.0 + 28.0 + 33.0) / 3.0, 1e-12);
+  EXPECT_EQ(o.accel_moving_bias.rw_density, g.accel.rate_rw_K);
+  EXPECT_EQ(o.accel_moving_bias.ramp_rate_std, g.accel.ramp_R.cwiseAbs());
+  EXPECT_EQ(o.accel_moving_bias.ramp_rate_std.y(), 0.0);
+  EXPECT_EQ(o.gyro_moving_bias.rw_density, g.gyro.rate_rw_K);
+  // imunoise keeps KF-GINS's single Gauss-Markov (B and K's driving noise together)
+  EXPECT_GT(sim.kfgins.imu_noise.accel_bias_std_mps2.x(), g.accel.instability_B.x());
+
+  const std::filesystem::path f = std::filesystem::temp_directory_path() / "ldv_moving_bias_terms.yaml";
+  std::ofstream(f) << "imupath: imu.txt\ngnsspath: gnss.txt\nimunoise:\n  arw: [0.1, 0.1, 0.1]\n  vrw: [0.1, 0.1, 0.1]\n"
+                   << "  gbstd: [1, 1, 1]\n  abstd: [100, 100, 100]\n  gsstd: [100, 100, 100]\n  asstd: [100, 100, 100]\n"
+                   << "  corrtime: 1\nldv:\n  moving_bias_gyro_rw_rad_s_sqrt_s: [1e-6, 2e-6]\n";
+  try {
+    options_from_kfgins(load_kfgins_config(f.string()));
+    ADD_FAILURE() << "a list of 2 accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("moving_bias_gyro_rw_rad_s_sqrt_s': expected a list of 3"), std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace ldv::est
