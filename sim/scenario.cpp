@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "common/io/input_error.hpp"
+#include "common/io/text_file_lines.hpp"
 
 namespace ldv::sim {
 namespace {
@@ -209,15 +210,13 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
 Scenario load_scenario(const std::string& name_or_path) {
   const std::string builtin = builtin_scenario_yaml(name_or_path);
   if (!builtin.empty()) return parse_scenario(builtin, "built-in:" + name_or_path);
-  std::ifstream in(name_or_path);
-  if (!in) {
+  if (!std::ifstream(name_or_path)) {
     std::string names;
     for (const auto& n : builtin_scenario_names()) names += " " + n;
     throw InputError(name_or_path, 0, "scenario: expected a built-in name (" + names.substr(1) + ") or a readable YAML file");
   }
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_scenario(text.str(), name_or_path);
+  // Bounded, regular files only: /dev/zero or a huge file given as a scenario is a clear error, not all memory.
+  return parse_scenario(read_small_text_file(name_or_path, static_cast<size_t>(1) << 20), name_or_path);
 }
 
 namespace {

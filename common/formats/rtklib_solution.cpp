@@ -1,5 +1,7 @@
 #include "common/formats/rtklib_solution.hpp"
 
+#include "common/io/text_file_lines.hpp"
+
 #include <charconv>
 #include <cstdio>
 #include <cmath>
@@ -226,18 +228,18 @@ std::string RtklibReadReport::summary() const {
 
 std::vector<GnssSolution> read_rtklib_pos(const std::string& path, RtklibParserOptions options,
                                           RtklibReadReport* report) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, 0, "cannot open file for reading");
+  TextFileLines in(path);  // bounded lines; a device (/dev/zero) or a directory is refused
   RtklibSolutionParser parser(std::move(options));
   std::vector<GnssSolution> out;
   RtklibReadReport rep;
-  std::string line, why;
+  std::string why;
+  std::string_view line;
   long line_no = 0, first_malformed_line = 0;
   std::string first_why;
   GnssSolution s;
   constexpr long kLoggedLines = 10;  // each malformed line up to this many, then only the counts
-  while (std::getline(in, line)) {
-    ++line_no;
+  while (in.next(line)) {
+    line_no = in.line_number();
     const auto kind = parser.parse_line(line, s, &why);
     if (kind == RtklibSolutionParser::LineKind::kMalformed) {
       if (rep.malformed() < kLoggedLines) spdlog::warn("{}:{}: RTKLIB solution line skipped: {}", path, line_no, why);
