@@ -1,6 +1,7 @@
 #include "sim/simulator.hpp"
 
 #include <cmath>
+#include <initializer_list>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -150,6 +151,25 @@ void record_vehicle_effects(const VehicleRealism& v, const ImuGrade& grade, doub
     e["odometer_quantum"] = {v.odo_quantum_mps};
   }
   if (v.wheel_slip_rad_per_mps2 != 0.0) e["wheel_slip"] = {v.wheel_slip_rad_per_mps2};
+}
+
+// Mean of B's time constants over the axes of these triads that have a B; 1 h when none has one.
+double mean_gm_time_s(std::initializer_list<const TriadErrorModel*> triads) {
+  double sum = 0;
+  int count = 0;
+  for (const TriadErrorModel* t : triads)
+    for (int i = 0; i < 3; ++i)
+      if (t->instability_B[i] > 0) sum += t->instability_T_s[i], ++count;
+  return count > 0 ? sum / count : 3600.0;
+}
+
+// A YAML list written on one line ([a, b, c]).
+template <typename Values>
+YAML::Node flow_list(const Values& values) {
+  YAML::Node n(YAML::NodeType::Sequence);
+  for (double x : values) n.push_back(x);
+  n.SetStyle(YAML::EmitterStyle::Flow);
+  return n;
 }
 
 }  // namespace
@@ -323,14 +343,7 @@ SimResult simulate(const SimRequest& req, const std::function<void(double)>& pro
   // KF-GINS has one correlation time for both triads: the mean of B's time constants over every axis of the
   // gyro and the accelerometer that has a B (the paper's grades have per-axis T: hg1700 160 s from the
   // accelerometer alone, hg1900 109 s, 3dm-gx2 50 s); 1 h when no axis has a B.
-  {
-    double sum = 0;
-    int count = 0;
-    for (const TriadErrorModel* s : {&grade.gyro, &grade.accel})
-      for (int i = 0; i < 3; ++i)
-        if (s->instability_B[i] > 0) sum += s->instability_T_s[i], ++count;
-    nz.corr_time_s = count > 0 ? sum / count : 3600.0;
-  }
+  nz.corr_time_s = mean_gm_time_s({&grade.gyro, &grade.accel});
   const auto in_run = [&](const TriadErrorModel& s) {
     return (s.instability_B.cwiseAbs2() + s.rate_rw_K.cwiseAbs2() * (0.5 * nz.corr_time_s)).cwiseSqrt().eval();
   };
@@ -355,27 +368,15 @@ SimResult simulate(const SimRequest& req, const std::function<void(double)>& pro
   // mean over the axes that have one), K, |R|, SI.
   const auto write_terms = [&](const TriadErrorModel& t, const std::string& prefix, const char* gm, const char* rw,
                                const char* ramp) {
-    auto seq = [](const Vec3& v) {
-      YAML::Node n(YAML::NodeType::Sequence);
-      for (int i = 0; i < 3; ++i) n.push_back(v[i]);
-      n.SetStyle(YAML::EmitterStyle::Flow);
-      return n;
-    };
-    double sum = 0;
-    int count = 0;
-    for (int i = 0; i < 3; ++i)
-      if (t.instability_B[i] > 0) sum += t.instability_T_s[i], ++count;
-    ldv[prefix + gm] = seq(t.instability_B);
-    ldv[prefix + "gm_time_s"] = count > 0 ? sum / count : 3600.0;
-    ldv[prefix + rw] = seq(t.rate_rw_K);
-    ldv[prefix + ramp] = seq(t.ramp_R.cwiseAbs());
+    ldv[prefix + gm] = flow_list(t.instability_B);
+    ldv[prefix + "gm_time_s"] = mean_gm_time_s({&t});
+    ldv[prefix + rw] = flow_list(t.rate_rw_K);
+    ldv[prefix + ramp] = flow_list(t.ramp_R.cwiseAbs().eval());
   };
   write_terms(grade.gyro, "moving_bias_gyro_", "gm_rad_s", "rw_rad_s_sqrt_s", "ramp_rad_s2");
   write_terms(grade.accel, "moving_bias_accel_", "gm_mps2", "rw_mps2_sqrt_s", "ramp_mps3");
   for (const auto& name : fx.declared) {
-    YAML::Node seq(YAML::NodeType::Sequence);
-    for (double x : fx.values.at(name).si) seq.push_back(x);
-    seq.SetStyle(YAML::EmitterStyle::Flow);
+    const YAML::Node seq = flow_list(fx.values.at(name).si);
     ldv["declared_effects_si"][name] = seq;
   }
   c.ldv = ldv;

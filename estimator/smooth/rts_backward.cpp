@@ -38,9 +38,9 @@ std::vector<SmoothedEpoch> rts_backward(const RtsEpochStore& store, const std::f
       // state without noise or variance has a zero pivot, which the solve skips).
       const Eigen::MatrixXd G = transition_times(next.Phi, cur.P_post);  // Phi P+ = C^T P-
       const Eigen::LLT<Eigen::MatrixXd> llt(next.P_prior);
-      const Eigen::MatrixXd C = (llt.info() == Eigen::Success ? Eigen::MatrixXd(llt.solve(G))
-                                                              : Eigen::MatrixXd(next.P_prior.ldlt().solve(G)))
-                                    .transpose();
+      const Eigen::MatrixXd C =
+          (llt.info() == Eigen::Success ? Eigen::MatrixXd(llt.solve(G)) : Eigen::MatrixXd(next.P_prior.ldlt().solve(G)))
+              .transpose();
       const Eigen::VectorXd e_prior_next = e_s + next.dx;
       e_s = C * e_prior_next;
       // P^s = P+ + C (P^s_next - P-) C^T, symmetric: only its lower half is computed, then mirrored.

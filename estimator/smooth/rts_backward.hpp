@@ -21,16 +21,15 @@ namespace ldv::est {
 
 struct SmoothedEpoch {
   double t_s = 0.0;
-  Eigen::VectorXd dx_post;   // e^s of the nominal after this epoch's updates
-  Eigen::VectorXd dx_prior;  // e^s of the nominal before them (dx_post + the epoch's dx)
-  Eigen::VectorXd var_smoothed;  // diagonal of P^s
+  Eigen::VectorXd dx_post;                              // e^s of the nominal after this epoch's updates
+  Eigen::VectorXd dx_prior;                             // e^s of the nominal before them (dx_post + the epoch's dx)
+  Eigen::VectorXd var_smoothed;                         // diagonal of P^s
   Eigen::VectorXd var_forward_post, var_forward_prior;  // diagonals of P+ and P-
-  Eigen::VectorXd x_eff;  // the effect states' forward nominal after the updates
-  bool restart = false;   // the filter restarted here (Phi = 0): rows before it are not interpolated into it
+  Eigen::VectorXd x_eff;                                // the effect states' forward nominal after the updates
+  bool restart = false;  // the filter restarted here (Phi = 0): rows before it are not interpolated into it
 };
 
 // progress(done fraction) is called now and then.
-std::vector<SmoothedEpoch> rts_backward(const RtsEpochStore& store,
-                                        const std::function<void(double)>& progress = {});
+std::vector<SmoothedEpoch> rts_backward(const RtsEpochStore& store, const std::function<void(double)>& progress = {});
 
 }  // namespace ldv::est

@@ -81,8 +81,7 @@ SmoothedRun RtsRecorder::smooth(const std::function<void(double)>& progress) {
   return SmoothedRun(rts_backward(store_, progress), std::move(rows_), store_.m());
 }
 
-SmoothedRun::SmoothedRun(std::vector<SmoothedEpoch> epochs, std::vector<std::pair<int, NavState>> rows,
-                         int effect_dim)
+SmoothedRun::SmoothedRun(std::vector<SmoothedEpoch> epochs, std::vector<std::pair<int, NavState>> rows, int effect_dim)
     : epochs_(std::move(epochs)), rows_(std::move(rows)), effect_dim_(effect_dim) {
   epoch_t_s_.reserve(epochs_.size());
   for (const SmoothedEpoch& e : epochs_) epoch_t_s_.push_back(e.t_s);

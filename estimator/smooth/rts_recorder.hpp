@@ -26,10 +26,10 @@ using Vec9 = Eigen::Matrix<double, 9, 1>;
 struct SmoothedRow {
   int week = 0;
   NavState forward, smoothed;
-  Vec9 separation = Vec9::Zero();      // forward minus smoothed: NED [m], NED [m/s], attitude error [rad]
-  Vec9 std_forward = Vec9::Zero();     // 1-sigma of the forward navigation error
-  Vec9 std_smoothed = Vec9::Zero();    // and of the smoothed one
-  Vec9 std_separation = Vec9::Zero();  // 1-sigma of the separation: sqrt(P forward - P smoothed)
+  Vec9 separation = Vec9::Zero();                    // forward minus smoothed: NED [m], NED [m/s], attitude error [rad]
+  Vec9 std_forward = Vec9::Zero();                   // 1-sigma of the forward navigation error
+  Vec9 std_smoothed = Vec9::Zero();                  // and of the smoothed one
+  Vec9 std_separation = Vec9::Zero();                // 1-sigma of the separation: sqrt(P forward - P smoothed)
   Eigen::VectorXd x_eff_smoothed, std_eff_smoothed;  // the effect states (layout offsets minus 9), SI
 };
 

@@ -32,8 +32,8 @@ void expect_over_seeds(const char* grade, double max_ratio) {
     }
   }
   for (const auto& [length, s] : sums) {
-    std::printf("%s, %.0f s gaps over 6 seeds: smoothed max / forward end drift = %.3f / %.3f m = %.3f\n", grade, length,
-                s.first / 6, s.second / 6, s.first / s.second);
+    std::printf("%s, %.0f s gaps over 6 seeds: smoothed max / forward end drift = %.3f / %.3f m = %.3f\n", grade,
+                length, s.first / 6, s.second / 6, s.first / s.second);
     EXPECT_LE(s.first, max_ratio * s.second) << length << " s gaps";
   }
   std::printf("%s: %d of %d gaps within %.2f of their own forward drift\n", grade, within_own_ratio, total, max_ratio);

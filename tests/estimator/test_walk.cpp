@@ -161,7 +161,7 @@ TEST(Walk, SmoothingTiesBothEndsOfAnOutage) {
     NavFilter f(w.in.options);
     RunCallbacks cb;
     cb.on_epoch = [&](const NavFilter& nf) {
-      uncut.push_back({nf.state().t_s, nf.state().pos, nf.state().v_n_mps, nf.state().q_b_n});
+      uncut.push_back(assess::sample_of(nf.state()));
     };
     const AlignmentOptions ao = alignment_options_from(w.in.options);
     run_navigation(w.in.imu, w.gnss, w.in.config, f, cb, &ao);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "common/formats/nav_types.hpp"
+#include "estimator/ins/nav_state.hpp"
 
 namespace ldv::assess {
 
@@ -15,6 +16,9 @@ struct NavSample {
   Vec3 vel_n_mps = Vec3::Zero();
   Quat q_b_n = Quat::Identity();
 };
+
+// A filter state as a sample of its solution.
+inline NavSample sample_of(const est::NavState& s) { return {s.t_s, s.pos, s.v_n_mps, s.q_b_n}; }
 
 class NavSeries {
  public:

@@ -21,8 +21,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 constexpr double kEpochTolerance_s = 1e-9;
 
-NavSample sample_of(const est::NavState& s) { return {s.t_s, s.pos, s.v_n_mps, s.q_b_n}; }
-
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // Follows one outage segment epoch by epoch and measures its drift against the reference.

@@ -40,8 +40,8 @@ std::vector<SmoothedGap> smooth_through_gaps(const std::vector<ImuIncrement>& im
     const auto ref = reference.at(t);
     if (!ref) continue;
     const est::SmoothedRow r = run.row(i);
-    const NavDifference ds = nav_difference({t, r.smoothed.pos, r.smoothed.v_n_mps, r.smoothed.q_b_n}, *ref);
-    const NavDifference df = nav_difference({t, r.forward.pos, r.forward.v_n_mps, r.forward.q_b_n}, *ref);
+    const NavDifference ds = nav_difference(sample_of(r.smoothed), *ref);
+    const NavDifference df = nav_difference(sample_of(r.forward), *ref);
     SmoothedGap& s = out[g];
     ++s.samples;
     const double h = ds.pos_ned_m.head<2>().norm();

@@ -14,12 +14,12 @@
 namespace ldv::assess {
 
 struct SmoothedGap {
-  double max_horizontal_m = 0.0;      // largest smoothed horizontal error inside the gap
-  double t_max_s = 0.0;               // where
-  double std_horizontal_at_max_m = 0.0;  // the smoother's horizontal 1-sigma there
-  double max_vertical_m = 0.0;        // largest |down| error inside the gap
+  double max_horizontal_m = 0.0;          // largest smoothed horizontal error inside the gap
+  double t_max_s = 0.0;                   // where
+  double std_horizontal_at_max_m = 0.0;   // the smoother's horizontal 1-sigma there
+  double max_vertical_m = 0.0;            // largest |down| error inside the gap
   double forward_max_horizontal_m = 0.0;  // the forward filter's, in the same run
-  int samples = 0;                    // reference epochs compared inside the gap
+  int samples = 0;                        // reference epochs compared inside the gap
 };
 
 // `windows` must not overlap (one length of a plan). Results in the order of `windows`. eval_period_s:

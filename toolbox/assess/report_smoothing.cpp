@@ -47,22 +47,24 @@ void add_smoothing_section(HtmlPage& page, const std::string& dir, const NavSeri
     t.header = {"component", "unit", "forward RMS", "smoothed RMS", "forward max", "smoothed max"};
     for (int i = 0; i < kComponents; ++i) {
       const int dec = i < 6 ? 3 : 4;
-      t.rows.push_back({kComponentNames[i], kComponentUnits[i], fixed(cf.stats[i].rms, dec), fixed(cs.stats[i].rms, dec),
-                        fixed(cf.stats[i].max_abs, dec), fixed(cs.stats[i].max_abs, dec)});
+      t.rows.push_back({kComponentNames[i], kComponentUnits[i], fixed(cf.stats[i].rms, dec),
+                        fixed(cs.stats[i].rms, dec), fixed(cf.stats[i].max_abs, dec), fixed(cs.stats[i].max_abs, dec)});
     }
     const ErrorTrace ef = error_trace(forward, *ref, in, t0), es = error_trace(smoothed, *ref, in, t0);
     GnuplotFigure fig(dir, "smoothing_error", 1000, 560);
     fig.add("set multiplot layout 2,1 title 'Error against the reference: forward filter and smoother'");
     fig.add("set lmargin 12\nset rmargin 22\nset logscale y\nset ylabel 'horizontal [m]'\nunset xlabel");
-    const std::string df = fig.add_data({ef.t, ef.horizontal, ef.down}), ds = fig.add_data({es.t, es.horizontal, es.down});
+    const std::string df = fig.add_data({ef.t, ef.horizontal, ef.down}),
+                      ds = fig.add_data({es.t, es.horizontal, es.down});
     fig.add("plot '" + df + "' using 1:($2 > 1e-4 ? $2 : 1e-4) with lines lc rgb '#d62728' title 'forward', '" + ds +
             "' using 1:($2 > 1e-4 ? $2 : 1e-4) with lines lc rgb '#1f77b4' title 'smoothed'");
     fig.add("unset logscale y\nset ylabel 'down [m]'\nset xlabel 'time since start [s]'");
     fig.add("plot '" + df + "' using 1:3 with lines lc rgb '#d62728' title 'forward', '" + ds +
             "' using 1:3 with lines lc rgb '#1f77b4' title 'smoothed'");
     fig.add("unset multiplot");
-    page.figure(fig.render(), "Forward and smoothed error (horizontal on a log scale): the smoother ties both ends "
-                              "of each GNSS gap, where the forward filter drifts",
+    page.figure(fig.render(),
+                "Forward and smoothed error (horizontal on a log scale): the smoother ties both ends "
+                "of each GNSS gap, where the forward filter drifts",
                 {t});
   }
   if (in.separation.empty()) return;
@@ -85,7 +87,8 @@ void add_smoothing_section(HtmlPage& page, const std::string& dir, const NavSeri
     for (int k = 0; k < 3; ++k) c[k].push_back(sep[i].std(k) > 1e-4 ? sep[i].separation(k) / sep[i].std(k) : 0.0);
   }
   GnuplotFigure fig(dir, "smoothing_separation", 1000, 620);
-  fig.add("set multiplot layout 3,1 title 'Separation (forward minus smoothed position) in units of its expected sigma'");
+  fig.add(
+      "set multiplot layout 3,1 title 'Separation (forward minus smoothed position) in units of its expected sigma'");
   fig.add("set lmargin 12\nset rmargin 22\nset yrange [-5:5]");
   const std::string d = fig.add_data({t, c[0], c[1], c[2]});
   const char* names[3] = {"north", "east", "down"};

@@ -10,7 +10,8 @@ namespace {
 
 std::string std_header(const est::StateLayout& layout) {
   std::string h =
-      "# week sow std_pos_n std_pos_e std_pos_d [m] std_vel_n std_vel_e std_vel_d [m/s] std_roll std_pitch std_yaw [deg]";
+      "# week sow std_pos_n std_pos_e std_pos_d [m] std_vel_n std_vel_e std_vel_d [m/s] std_roll std_pitch std_yaw "
+      "[deg]";
   for (const auto& b : layout.blocks())
     for (const auto& n : b.effect->state_names()) h += std::string(" ") + n + "[" + b.effect->print_unit().unit + "]";
   return h + " (each effect state: estimate then std)\n";
@@ -134,9 +135,9 @@ void write_smoothed(const est::SmoothedRun& run, const est::StateLayout& layout,
   TextOut sep(base + "_separation.txt",
               std::string(kSeparationHeaderStart) +
                   " [m] sep_vn sep_ve sep_vd [m/s] sep_phi_n sep_phi_e sep_phi_d [deg] "
-              "std_n std_e std_d [m] std_vn std_ve std_vd [m/s] std_phi_n std_phi_e std_phi_d [deg] (separation = "
-              "forward minus smoothed; std = its expected 1-sigma, sqrt(P forward - P smoothed); phi: attitude "
-              "error angles about N E D)\n");
+                  "std_n std_e std_d [m] std_vn std_ve std_vd [m/s] std_phi_n std_phi_e std_phi_d [deg] (separation = "
+                  "forward minus smoothed; std = its expected 1-sigma, sqrt(P forward - P smoothed); phi: attitude "
+                  "error angles about N E D)\n");
   const double period = std_rate_hz > 0 ? 1.0 / std_rate_hz : 0.0;
   double next_t = -1e300;
   for (std::size_t i = 0; i < run.size(); ++i) {
@@ -149,7 +150,7 @@ void write_smoothed(const est::SmoothedRun& run, const est::StateLayout& layout,
     sep.num(r.week, 0);
     sep.num(r.smoothed.t_s, 4);
     for (const est::Vec9* v : {&r.separation, &r.std_separation})
-      for (int k = 0; k < 9; ++k) sep.num(k < 6 ? (*v)(k) : (*v)(k) * kRadToDeg, k < 6 ? 5 : 6);
+      for (int k = 0; k < 9; ++k) sep.num(k < 6 ? (*v)(k) : (*v)(k)*kRadToDeg, k < 6 ? 5 : 6);
     sep.end_line();
   }
   nav.close();
