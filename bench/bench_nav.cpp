@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "common/formats/kfgins_files.hpp"
+#include "estimator/calibrate/imu_latency.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "sim/simulator.hpp"
 
@@ -39,6 +40,13 @@ void filter_only(benchmark::State& state, const char* model) {
   }
   state.counters["imu_samples_per_s"] = benchmark::Counter(static_cast<double>(sim.imu.size()) * state.iterations(),
                                                            benchmark::Counter::kIsRate);
+}
+
+// The IMU-latency search `ldv nav` runs before the filter (issue 12) on the same drive: the whole file's turns
+// against the GNSS track, 2 x (51 + 13 + 41) lags.
+void imu_latency_search(benchmark::State& state) {
+  const auto& sim = drive();
+  for (auto _ : state) benchmark::DoNotOptimize(est::estimate_imu_latency(sim.imu, sim.gnss).lag_s);
 }
 
 // The land-vehicle aids at 200 Hz (issue 16: with NHC within 1.5x of the run without aids).
@@ -87,6 +95,7 @@ void end_to_end(benchmark::State& state, const char* model) {
 BENCHMARK_CAPTURE(filter_only, ins15, "ins15")->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK_CAPTURE(filter_only, kfgins21, "kfgins21")->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK_CAPTURE(filter_only, geoldv51, "geoldv51")->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(imu_latency_search)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK_CAPTURE(filter_with_aids, kfgins21_nhc, std::vector<std::string>{"nhc"})->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK_CAPTURE(filter_with_aids, kfgins21_nhc_zaru, std::vector<std::string>{"nhc", "zaru"})
     ->Unit(benchmark::kMillisecond)

@@ -92,6 +92,10 @@ struct FilterOptions {
   // noisier as installed (vibration) than configured; the scale is reported (NavFilter::imu_noise_scale).
   // Off with ldv.kfgins_compatible and in `ldv diagnose` (whose model check judges the configured model).
   bool adapt_imu_noise = true;
+  // With adapt_imu_noise: run_navigation first measures the noise as installed over a standstill in the data
+  // and makes it the floor (installed_imu_noise.hpp). Off where the adaptation itself is the measurement
+  // (the IMU-latency decision compares how much noise the filter needs with and without a lag).
+  bool installed_noise_floor = true;
   double step_confirm_s = 1.0;
   int gate_max_consecutive_rejects = 10;  // then accept (re-synchronise) and flag
   bool use_gnss_velocity = true;

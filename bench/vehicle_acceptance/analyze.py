@@ -32,8 +32,8 @@ m = re.search(r"gate rejections (\d+)", err)
 res["gate_rej"] = int(m.group(1)) if m else None
 m = re.search(r"(\d+) GNSS fixes;", err)
 res["fixes_in_window"] = int(m.group(1)) if m else None
-m = re.search(r"IMU noise as installed: ([\d.]+)x", err)
-res["noise_scale"] = float(m.group(1)) if m else None
+m = re.search(r"IMU noise as installed: gyro ([\d.]+)x, accel ([\d.]+)x", err)
+res["noise_scale"] = f"{float(m.group(1)):g}/{float(m.group(2)):g}" if m else None
 m = re.search(r"(\d+) fixes down-weighted", err)
 res["downweighted"] = int(m.group(1)) if m else None
 res["summary"] = " | ".join(l.strip() for l in err.splitlines() if l.startswith("ldv nav") or "gate rejections" in l or "IMU noise" in l)
@@ -88,6 +88,14 @@ if pos:
     res["innov_ratio_d_good"] = rms(gacc, 4) / sig[2]
     res["mean_nis"] = sum(float(r[8]) for r in pos) / len(pos)
     res["stated_sigma_m"] = [round(s, 4) for s in sig]
+
+# The same ratios for the oracle run (run.sh: the datasheet config with the IMU noise as installed, the
+# simulator's truth): what the physics allows with this IMU and GNSS rate, whatever the self-calibration does.
+orc = [l.split() for l in rd("oracle_innovations.txt").splitlines() if l.strip() and not l.startswith("#")]
+orc = [r for r in orc if r[1] == "gnss_position" and r[-1] == "1" and round(float(r[0]), 2) not in outl]
+if orc and pos:
+    res["oracle_innov_ratio_h_good"] = math.sqrt((rms(orc, 2) ** 2 + rms(orc, 3) ** 2) / 2) / hs
+    res["oracle_innov_ratio_d_good"] = rms(orc, 4) / sig[2]
 
 # --- compare (official horizontal RMS)
 try:

@@ -31,6 +31,17 @@ one() {  # name grade seed rate diag(0/1) extra-sim-args...
   echo $? > $d/nav.rc
   echo "$(date +%s.%N) - $t0" | bc > $d/nav.wall
   nice -n 10 $LDV compare --json $d/out.nav $d/truth.nav > $d/compare.json 2> $d/compare.stderr
+  # The oracle: the same config with the IMU's white noise as installed (the simulator's vibration factor).
+  local vib=$(grep -A1 '^  vibration_white_factor:' $d/truth_effects.yaml | sed -n 's/.*si: \[\([0-9.e+-]*\)\].*/\1/p')
+  if [ -n "$vib" ]; then
+    python3 - "$d/datasheet.yaml" "$vib" > $d/oracle.yaml <<'PY'
+import re, sys
+text, f = open(sys.argv[1]).read(), float(sys.argv[2])
+scale = lambda m: m.group(1) + "[" + ", ".join("%g" % (float(x) * f) for x in m.group(2).split(",")) + "]"
+print(re.sub(r"(\n  (?:arw|vrw): )\[([^\]]*)\]", scale, text), end="")
+PY
+    nice -n 10 $LDV nav --kfgins-config $d/oracle.yaml --out $d/oracle.nav 2> $d/oracle.stderr
+  fi
   if [ $diag = 1 ]; then
     local t1=$(date +%s.%N)
     nice -n 10 $LDV diagnose --kfgins-config $d/datasheet.yaml --iterate --truth $d/truth.nav --json $d/diag.json > $d/diag.stdout 2> $d/diag.stderr

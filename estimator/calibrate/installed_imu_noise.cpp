@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "common/geo/earth_model.hpp"
+#include "estimator/calibrate/gnss_track.hpp"
 
 namespace ldv::est {
 namespace {
@@ -13,13 +15,61 @@ double median3(Vec3 v) {
   return v(1);
 }
 
+// The white-noise density N^2 [unit^2 s] of a rate series (dt apart): the median of its periodogram's bins
+// from kBandLow_Hz to kBandHigh_Hz or 0.4 of the sample rate (Hann-windowed segments, half overlapping, each
+// detrended), over ln 2 (a white noise's bin powers are exponential: median = ln 2 x mean). The median, not the
+// mean or the sample-to-sample scatter: an engine's harmonics (25 Hz and up at idle) put their power into a few
+// bins, and counted as white they made a vibrating car's accelerometer floor 3x its true noise; they
+// integrate to nothing. NaN when the series is too short for one segment with bins in the band.
+double white_psd(const std::vector<double>& r, double dt) {
+  constexpr double kBandLow_Hz = 0.5, kBandHigh_Hz = 40.0, kSegment_s = 4.0;
+  constexpr int kMaxSegments = 8;  // 18 s of standstill: ~1,300 bins, 4 % on the PSD (and a bounded cost)
+  const size_t n = r.size();
+  const size_t seg = std::min(n, static_cast<size_t>(std::lround(kSegment_s / dt)));
+  if (seg < 16) return NAN;
+  const double df = 1.0 / (seg * dt);
+  const size_t j0 = static_cast<size_t>(std::ceil(std::max(kBandLow_Hz, 2.0 * df) / df));
+  const size_t j1 = static_cast<size_t>(std::floor(std::min(kBandHigh_Hz, 0.4 / dt) / df));
+  if (j1 < j0) return NAN;
+  std::vector<double> w(seg), x(seg), powers;
+  double sum_w2 = 0.0;
+  for (size_t k = 0; k < seg; ++k) {
+    w[k] = 0.5 - 0.5 * std::cos(2.0 * M_PI * (k + 0.5) / seg);
+    sum_w2 += w[k] * w[k];
+  }
+  int segments = 0;
+  for (size_t start = 0; start + seg <= n && segments < kMaxSegments; start += seg / 2, ++segments) {
+    // Least-squares line through the segment taken out (the mean rate and a slow drift).
+    double st = 0, sy = 0, stt = 0, sty = 0;
+    for (size_t k = 0; k < seg; ++k) {
+      const double t = static_cast<double>(k), y = r[start + k];
+      st += t, sy += y, stt += t * t, sty += t * y;
+    }
+    const double slope = (seg * sty - st * sy) / (seg * stt - st * st), offset = (sy - slope * st) / seg;
+    for (size_t k = 0; k < seg; ++k) x[k] = w[k] * (r[start + k] - offset - slope * static_cast<double>(k));
+    for (size_t j = j0; j <= j1; ++j) {
+      const double step = 2.0 * M_PI * static_cast<double>(j) / static_cast<double>(seg);
+      const double c = std::cos(step), sn = std::sin(step);
+      double re = 0.0, im = 0.0, pr = 1.0, pi = 0.0;  // the phasor exp(-i step k), turned sample by sample
+      for (size_t k = 0; k < seg; ++k) {
+        re += x[k] * pr, im += x[k] * pi;
+        const double next_pr = pr * c + pi * sn;
+        pi = pi * c - pr * sn, pr = next_pr;
+      }
+      // Two-sided PSD: mean N^2 for white rate noise of density N (per-sample variance N^2 / dt).
+      powers.push_back(dt * (re * re + im * im) / sum_w2);
+    }
+  }
+  return median_in_place(powers) / std::log(2.0);
+}
+
 }  // namespace
 
-double InstalledImuNoise::psd_scale(const Vec3& arw_configured, const Vec3& vrw_configured) const {
-  if (!found) return 1.0;
+ImuNoiseScale InstalledImuNoise::psd_scale(const Vec3& arw_configured, const Vec3& vrw_configured) const {
+  if (!found) return {};
   const Vec3 g = arw_rad_per_sqrt_s.cwiseQuotient(arw_configured.cwiseMax(1e-12)).cwiseAbs2();
   const Vec3 a = vrw_mps_per_sqrt_s.cwiseQuotient(vrw_configured.cwiseMax(1e-12)).cwiseAbs2();
-  return std::max({1.0, median3(g), median3(a)});
+  return {std::max(1.0, median3(g)), std::max(1.0, median3(a))};
 }
 
 InstalledImuNoise measure_installed_imu_noise(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
@@ -44,27 +94,29 @@ InstalledImuNoise measure_installed_imu_noise(const std::vector<ImuIncrement>& i
     if (still && gnss[later].t_s - run_t0 > best_t1 - best_t0) best_t0 = run_t0, best_t1 = gnss[later].t_s;
   }
   if (best_t1 - best_t0 < min_standstill_s) return out;
-  // The scatter of the rates about their mean over the standstill (1 s margins: the stop's settling).
-  Eigen::Matrix<double, 6, 1> sum = Eigen::Matrix<double, 6, 1>::Zero(), sum2 = sum;
+  // The rates over the standstill (1 s margins: the stop's settling).
+  std::vector<Eigen::Matrix<double, 6, 1>> rates;
   double sum_dt = 0.0;
-  long n = 0;
   for (const ImuIncrement& s : imu) {
     if (s.t_s < best_t0 + 1.0 || s.t_s > best_t1 - 1.0 || !(s.dt_s > 0)) continue;
     Eigen::Matrix<double, 6, 1> rate;
     rate << s.dtheta_b_rad / s.dt_s, s.dvel_b_mps / s.dt_s;
     if (!rate.allFinite()) continue;
-    sum += rate;
-    sum2 += rate.cwiseAbs2();
+    rates.push_back(rate);
     sum_dt += s.dt_s;
-    ++n;
   }
-  if (n < 50) return out;
-  const double dt = sum_dt / n;
-  const Eigen::Matrix<double, 6, 1> mean = sum / n;
-  const Eigen::Matrix<double, 6, 1> sd = (sum2 / n - mean.cwiseAbs2()).cwiseMax(0.0).cwiseSqrt();
-  // A white rate noise of density N has a per-sample std N / sqrt(dt).
-  out.arw_rad_per_sqrt_s = sd.head<3>() * std::sqrt(dt);
-  out.vrw_mps_per_sqrt_s = sd.tail<3>() * std::sqrt(dt);
+  if (rates.size() < 50) return out;
+  const double dt = sum_dt / static_cast<double>(rates.size());
+  Eigen::Matrix<double, 6, 1> density;
+  for (int axis = 0; axis < 6; ++axis) {
+    std::vector<double> r(rates.size());
+    for (size_t k = 0; k < r.size(); ++k) r[k] = rates[k](axis);
+    const double psd = white_psd(r, dt);
+    if (!(psd >= 0.0)) return out;
+    density(axis) = std::sqrt(psd);
+  }
+  out.arw_rad_per_sqrt_s = density.head<3>();
+  out.vrw_mps_per_sqrt_s = density.tail<3>();
   out.standstill_s = best_t1 - best_t0;
   out.found = true;
   return out;

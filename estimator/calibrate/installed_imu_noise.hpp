@@ -2,10 +2,13 @@
 // The IMU's white noise as installed, from a standstill in the data: an engine idling and a vehicle body
 // shaking make it many times the datasheet's. A standstill is where the GNSS track does not move for a
 // while (the IMU's own static detector cannot be trusted for this: its thresholds come from the very
-// noise in question); over it, the sample-to-sample scatter of the rates gives the noise density.
+// noise in question); over it, the median PSD of each axis's rate between 0.5 and 40 Hz gives its
+// white-noise density (an engine's harmonics, 25 Hz and up, fill the sample-to-sample scatter but take few
+// bins, and integrate to nothing).
 #include <vector>
 
 #include "common/formats/nav_types.hpp"
+#include "estimator/filter/imu_noise_scale.hpp"
 
 namespace ldv::est {
 
@@ -14,9 +17,9 @@ struct InstalledImuNoise {
   double standstill_s = 0.0;
   Vec3 arw_rad_per_sqrt_s = Vec3::Zero();  // gyro white-noise density measured per axis
   Vec3 vrw_mps_per_sqrt_s = Vec3::Zero();  // accel
-  // The factor on the configured PSDs that covers the measured noise (the larger of the gyro and accel
-  // ratios, median over axes; at least 1).
-  double psd_scale(const Vec3& arw_configured, const Vec3& vrw_configured) const;
+  // The factors on the configured PSDs that cover the measured noise, gyro and accel apart (each the median
+  // over axes of the squared density ratio; at least 1).
+  ImuNoiseScale psd_scale(const Vec3& arw_configured, const Vec3& vrw_configured) const;
 };
 
 // imu and gnss in time order on one time base; the standstill: GNSS speed below max_speed_mps, over 1 s.

@@ -256,7 +256,7 @@ void NavFilter::run_aids() {
   // every sample cost 5 % of a run.
   LinearizationPoint lp;
   const auto context = [&] {
-    return AidContext{c_.nav, lp, layout_, opt_, c_.P, c_.detector, c_.f_n_smooth_mps2, gnss_recent, c_.imu_noise_scale,
+    return AidContext{c_.nav, lp, layout_, opt_, c_.P, c_.detector, c_.f_n_smooth_mps2, gnss_recent, imu_noise_psd_scale().gyro,
                       faults_};
   };
   std::vector<Measurement> measurements;
@@ -358,9 +358,9 @@ void NavFilter::flush_covariance() {
   const Mat3 C = c_.nav.C_b_n();
   Eigen::MatrixXd Qd;
   const bool want = observer_.p && observer_.p->wants_matrices();
-  const double q_scale = c_.imu_noise_scale;
-  const Mat3 Qv = C * opt_.vrw_mps_per_sqrt_s.cwiseAbs2().asDiagonal() * C.transpose() * (T * q_scale);
-  const Mat3 Qp = C * opt_.arw_rad_per_sqrt_s.cwiseAbs2().asDiagonal() * C.transpose() * (T * q_scale);
+  const ImuNoiseScale q_scale = imu_noise_psd_scale();
+  const Mat3 Qv = C * opt_.vrw_mps_per_sqrt_s.cwiseAbs2().asDiagonal() * C.transpose() * (T * q_scale.accel);
+  const Mat3 Qp = C * opt_.arw_rad_per_sqrt_s.cwiseAbs2().asDiagonal() * C.transpose() * (T * q_scale.gyro);
   P.block<3, 3>(kVel, kVel) += Qv;
   P.block<3, 3>(kAtt, kAtt) += Qp;
   P.diagonal().tail(m) += q_c_ * T;
@@ -562,8 +562,9 @@ void NavFilter::adapt_imu_noise(const InnovationRecord& rec) {
   c_.imu_noise_scale = std::clamp(c_.imu_noise_scale * std::exp(step), 1.0, kMaxImuNoiseScale);
 }
 
-void NavFilter::set_imu_noise_scale(double psd_scale) {
-  if (std::isfinite(psd_scale)) c_.imu_noise_scale = std::clamp(psd_scale, 1.0, kMaxImuNoiseScale);
+void NavFilter::set_imu_noise_floor(const ImuNoiseScale& psd_floor) {
+  if (std::isfinite(psd_floor.gyro)) c_.imu_noise_floor.gyro = std::clamp(psd_floor.gyro, 1.0, kMaxImuNoiseScale);
+  if (std::isfinite(psd_floor.accel)) c_.imu_noise_floor.accel = std::clamp(psd_floor.accel, 1.0, kMaxImuNoiseScale);
 }
 
 void NavFilter::correct(const Eigen::VectorXd& dx) {

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "common/formats/nav_types.hpp"
+#include "estimator/filter/imu_noise_scale.hpp"
 #include "estimator/filter/records.hpp"
 #include "estimator/filter/status.hpp"
 #include "estimator/ins/mechanization.hpp"
@@ -63,10 +64,16 @@ class NavFilter {
   void set_input_gyro_bias(const Vec3& gyro_bias_rad_s) { opt_.input_gyro_bias_rad_s = gyro_bias_rad_s; }
   std::uint32_t status() const { return c_.status; }
   const FaultCounters& faults() const { return faults_; }
-  // The factor on the configured IMU white noise the filter runs with (FilterOptions::adapt_imu_noise).
+  // The factor the NIS adaptation puts on top of the floor (FilterOptions::adapt_imu_noise; >= 1).
   double imu_noise_scale() const { return c_.imu_noise_scale; }
-  // Its start value (after initialize): e.g. the noise a standstill in the data showed (installed_imu_noise.hpp).
-  void set_imu_noise_scale(double psd_scale);
+  // The floor: the noise as installed, e.g. what a standstill in the data showed (installed_imu_noise.hpp), set
+  // after initialize; without it the configuration. The adaptation never goes below it.
+  void set_imu_noise_floor(const ImuNoiseScale& psd_floor);
+  const ImuNoiseScale& imu_noise_floor() const { return c_.imu_noise_floor; }
+  // What the filter runs with: the floor times the adapted factor, on the configured PSDs.
+  ImuNoiseScale imu_noise_psd_scale() const {
+    return {c_.imu_noise_floor.gyro * c_.imu_noise_scale, c_.imu_noise_floor.accel * c_.imu_noise_scale};
+  }
   // Angular rate and specific force of the last sample, error-compensated (body axes).
   const MechanizationStep& last_step() const { return c_.mech.last(); }
   // Records since the last call (pre-update innovations with gate decisions).
@@ -114,8 +121,10 @@ class NavFilter {
     std::vector<UpdaterSlot> updaters;   // the IMU-driven aids, with their own small state
     std::uint32_t status = 0;
     double imu_interval_s = 0.0;  // the last regular IMU interval (what one increment normally spans)
-    // Factor on the configured IMU white-noise PSDs, adapted from the GNSS position NIS (>= 1: the
-    // configuration is the floor). Vibration of an installed IMU is often 10x its datasheet noise.
+    // Factors on the configured IMU white-noise PSDs: the installed noise's floor per sensor, and on top of
+    // it one factor adapted from the GNSS position NIS (>= 1). Vibration of an installed IMU is often 10x
+    // its datasheet noise.
+    ImuNoiseScale imu_noise_floor;
     double imu_noise_scale = 1.0;
     std::deque<Event> applied;  // readings applied within the history horizon (what a snapshot contains)
   };

@@ -341,7 +341,7 @@ void NavSession::run_heading_trial() {
     sd.att_rad.z() = std::max(al.std.att_rad.z(), 0.5 * step);
     trial.initialize(s, sd);
     trial.set_input_gyro_bias(al.gyro_bias_seed);
-    if (o_.imu_noise_scale_start) trial.set_imu_noise_scale(*o_.imu_noise_scale_start);
+    if (o_.imu_noise_floor) trial.set_imu_noise_floor(*o_.imu_noise_floor);
     auto fix = std::upper_bound(gnss_queue_.begin(), gnss_queue_.end(), s.t_s,
                                 [](double t, const GnssFix& g) { return t < g.t_s; });
     double cost = 0.0;
@@ -420,11 +420,10 @@ void NavSession::start(const NavState& s, const NavStd& sd, const std::string& h
     filter_.set_input_gyro_bias(*gyro_bias_seed);
     gyro_bias_seed_rad_s_ = *gyro_bias_seed;
   }
-  if (o_.imu_noise_scale_start && filter_.options().adapt_imu_noise)
-    filter_.set_imu_noise_scale(*o_.imu_noise_scale_start);
+  if (o_.imu_noise_floor && filter_.options().adapt_imu_noise) filter_.set_imu_noise_floor(*o_.imu_noise_floor);
   initialisation_ = redo_note_.empty() ? given_note_ + how : redo_note_ + how;
   started_at_s_ = s.t_s;
-  imu_noise_scale_at_start_ = filter_.imu_noise_scale();
+  imu_noise_floor_ = filter_.imu_noise_floor();
   // Readings up to the initial epoch are not used.
   while (!gnss_queue_.empty() && gnss_queue_.front().t_s <= s.t_s) gnss_queue_.pop_front();
   while (!other_queue_.empty() && other_queue_.front()->t_s <= s.t_s) other_queue_.pop_front();

@@ -40,8 +40,9 @@ struct SessionOptions {
   // The slow-course fallback is used when the configured speed is not reached within this much data time
   // after the fallback aligned (offline, before this session: only when it was never reached in the file).
   double slow_course_grace_s = 60.0;
-  // The IMU noise scale to start from (FilterOptions::adapt_imu_noise): e.g. measured over a standstill.
-  std::optional<double> imu_noise_scale_start;
+  // The IMU noise as installed, the floor of the filter's noise adaptation (FilterOptions::adapt_imu_noise):
+  // e.g. measured over a standstill (installed_imu_noise.hpp).
+  std::optional<ImuNoiseScale> imu_noise_floor;
   // A failed alignment is redone (robust runs, FilterOptions::robust_update): when the horizontal velocity
   // changes the IMU senses, in the navigated attitude, are turned by more than this against the GNSS track's
   // (heading_check.hpp), and by more than 3 sigma of the filter's heading std, the heading has failed (a false
@@ -83,7 +84,7 @@ class NavSession {
   const Vec3& gyro_bias_seed_rad_s() const { return gyro_bias_seed_rad_s_; }
   // The filter's initial epoch, and the IMU noise scale it started with (FilterOptions::adapt_imu_noise).
   double started_at_s() const { return started_at_s_; }
-  double imu_noise_scale_at_start() const { return imu_noise_scale_at_start_; }
+  const ImuNoiseScale& imu_noise_floor() const { return imu_noise_floor_; }
   long imu_samples_used() const { return imu_used_; }
   long gnss_fixes_used() const { return gnss_used_; }
   long other_readings_used() const { return others_used_; }
@@ -138,7 +139,8 @@ class NavSession {
   std::string initialisation_, given_note_, redo_note_;
   bool given_pending_ = false;  // the data started after the given state's time: the GNSS decides
   Vec3 gyro_bias_seed_rad_s_ = Vec3::Zero();
-  double started_at_s_ = 0.0, imu_noise_scale_at_start_ = 1.0;
+  double started_at_s_ = 0.0;
+  ImuNoiseScale imu_noise_floor_;
   long imu_used_ = 0, gnss_used_ = 0, others_used_ = 0;
   HeadingCheck heading_check_;
   std::deque<GnssFix> fixes_to_check_;  // handed to the filter, not yet to heading_check_

@@ -188,10 +188,9 @@ RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vecto
   RunSummary sum;
   size_t i = first_imu_index(imu, cfg);
   SessionOptions so = session_options_from(cfg, filter.options(), alignment);
-  if (filter.options().adapt_imu_noise) {
+  if (filter.options().adapt_imu_noise && filter.options().installed_noise_floor) {
     const InstalledImuNoise noise = measure_installed_imu_noise(imu, gnss);
-    so.imu_noise_scale_start =
-        noise.psd_scale(filter.options().arw_rad_per_sqrt_s, filter.options().vrw_mps_per_sqrt_s);
+    so.imu_noise_floor = noise.psd_scale(filter.options().arw_rad_per_sqrt_s, filter.options().vrw_mps_per_sqrt_s);
   }
   NavSession session(so, filter, [&](const NavFilter& f, int) {
     if (cb.on_innovation)
@@ -224,7 +223,7 @@ RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vecto
   sum.other_observations = session.other_readings_used();
   sum.initialisation = session.initialisation();
   sum.gyro_bias_seed_rad_s = session.gyro_bias_seed_rad_s();
-  sum.imu_noise_scale_start = session.imu_noise_scale_at_start();
+  sum.imu_noise_floor = session.imu_noise_floor();
   sum.t_start_s = session.started_at_s();
   sum.t_end_s = filter.state().t_s;
   sum.faults = filter.faults();

@@ -41,9 +41,10 @@ struct RunSummary {
   Vec3 gyro_bias_seed_rad_s = Vec3::Zero();  // turn-on bias from the static start, taken out (alignment.hpp)
   FaultCounters faults;
   std::uint32_t final_status = 0;
-  // With FilterOptions::adapt_imu_noise: the factor on the configured IMU noise PSD a standstill in the
-  // data showed (the adaptation's start), and the factor at the end of the run.
-  double imu_noise_scale_start = 1.0, imu_noise_scale_end = 1.0;
+  // With FilterOptions::adapt_imu_noise: the factors on the configured IMU noise PSDs a standstill in the
+  // data showed (the adaptation's floor), and the adapted factor on top of it at the end of the run.
+  ImuNoiseScale imu_noise_floor;
+  double imu_noise_scale_end = 1.0;
 };
 
 // Runs the files through a NavSession (nav_session.hpp: the same session `ldv nav --lcm-log` and the fusion

@@ -28,7 +28,7 @@ struct AidContext {
   const StaticDetector& detector;  // standstill detection over options.zupt.window_s
   const Vec3& f_n_smooth_mps2;     // specific force in n, low-passed (window / 4)
   bool gnss_recent;                // a GNSS measurement was used within the last second
-  double imu_noise_scale;          // factor on the configured IMU white-noise PSDs
+  double gyro_noise_scale;         // factor on the configured gyro white-noise PSD (installed, adapted)
   FaultCounters& faults;
 };
 

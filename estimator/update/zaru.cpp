@@ -33,7 +33,7 @@ class ZaruUpdater final : public Updater {
     m.H.middleCols<3>(kAtt) = C_n_b * skew(w_ie_n);
     add_gyro_error_columns(c.layout, c.lp, m);
     add_effect_columns(c.layout, c.lp, m);
-    const Vec3 white_var = c.options.arw_rad_per_sqrt_s.cwiseAbs2() * (c.imu_noise_scale / window_s);
+    const Vec3 white_var = c.options.arw_rad_per_sqrt_s.cwiseAbs2() * (c.gyro_noise_scale / window_s);
     const double floor = c.options.aids.zaru_std_rad_s;
     m.R = (white_var.array() + floor * floor).matrix().asDiagonal();
     out.push_back(std::move(m));

@@ -156,6 +156,8 @@ void continue_both_and_compare(bool live) {
   EXPECT_EQ(original.status(), restored.status());
   EXPECT_EQ(original.faults().late_dropped, 0);
   EXPECT_EQ(original.imu_noise_scale(), restored.imu_noise_scale());
+  EXPECT_EQ(original.imu_noise_floor().gyro, restored.imu_noise_floor().gyro);
+  EXPECT_EQ(original.imu_noise_floor().accel, restored.imu_noise_floor().accel);
 }
 
 }  // namespace

@@ -57,7 +57,7 @@ TEST(NavSession, GivenFixesArrivingLateAsLive_WhenTheMountingIsUnknown_ThenTheSe
   // measured over the file's standstill is given to it (live has no file to measure).
   fo.history_s = 3.0;
   SessionOptions so = session_options_from(cfg, fo);
-  so.imu_noise_scale_start = sum.imu_noise_scale_start;
+  so.imu_noise_floor = sum.imu_noise_floor;
   NavFilter live_filter(fo);
   std::map<long, NavState> live;
   double first_late_fix_t = 1e300;  // the live NAV of an epoch is published before its fix arrives

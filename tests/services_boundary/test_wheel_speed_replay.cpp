@@ -94,7 +94,7 @@ TEST(WheelSpeedReplay, GivenAnOdometerOnTheBus_WhenTheLogIsReplayedWithTheOdomet
   // The replay: fusion's engine (history_s as deployed) over the log.
   fo.history_s = 3.0;
   est::SessionOptions so = est::session_options_from(cfg, fo);
-  so.imu_noise_scale_start = file_sum.imu_noise_scale_start;  // measured over the file offline (none live)
+  so.imu_noise_floor = file_sum.imu_noise_floor;  // measured over the file offline (none live)
   FusionEngine engine(so);
   ASSERT_TRUE(engine.wants_odometer());
   std::map<long, est::NavState> replay;

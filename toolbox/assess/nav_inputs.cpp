@@ -156,13 +156,14 @@ std::vector<ImuIncrement> shifted(std::vector<ImuIncrement> imu, double lag_s) {
 }
 
 // How much IMU noise the filter needs to follow the fixes over these IMU samples: the geometric mean over the
-// run of the adapted noise scale (FilterOptions::adapt_imu_noise holds the position NIS at its expectation, so
-// a model that misses something shows as noise). Positions only (a GNSS velocity's own lag would take sides);
-// a run that cannot start counts as the largest scale.
+// run of the adapted noise scale, from the configured noise up (FilterOptions::adapt_imu_noise holds the
+// position NIS at its expectation, so a model that misses something shows as noise). Positions only (a GNSS
+// velocity's own lag would take sides); a run that cannot start counts as the largest scale.
 double imu_noise_needed(const NavInputs& in, const std::vector<ImuIncrement>& imu) {
   est::FilterOptions o = in.options;
   o.use_gnss_velocity = false;
   o.adapt_imu_noise = true;
+  o.installed_noise_floor = false;  // the adapted factor alone: a floor above what both runs need would tie them
   est::NavFilter filter(o);
   double sum_log = 0.0;
   long n = 0;

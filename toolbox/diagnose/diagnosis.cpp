@@ -69,18 +69,18 @@ bool Diagnosis::consistent() const {
 namespace {
 
 // The IMU noise as installed, from a GNSS standstill in the data (installed_imu_noise.hpp); above
-// kApplyImuNoiseScale the model takes it (white-noise densities scaled by the square root of the PSD
-// factor). Not from the filter's in-flight adaptation: that absorbs every missing effect (a lever arm,
+// kApplyImuNoiseScale the model takes it (each sensor's white-noise density scaled by the square root of its
+// PSD factor). Not from the filter's in-flight adaptation: that absorbs every missing effect (a lever arm,
 // a time offset) into noise and would hide what the diagnosis is looking for.
 void measure_imu_noise(const DiagnoseInputs& in, est::FilterOptions& model, Diagnosis& d) {
   const est::InstalledImuNoise noise = est::measure_installed_imu_noise(in.imu, in.gnss);
   d.imu_noise_scale = noise.psd_scale(model.arw_rad_per_sqrt_s, model.vrw_mps_per_sqrt_s);
-  if (d.imu_noise_scale < kApplyImuNoiseScale) return;
+  if (d.imu_noise_scale.larger() < kApplyImuNoiseScale) return;
   const FilterRun configured = run_filter(in, model, nullptr);
   ++d.filter_runs;
   d.configured_check = check_model(configured, classify_epochs(configured.epochs));
-  model.arw_rad_per_sqrt_s *= std::sqrt(d.imu_noise_scale);
-  model.vrw_mps_per_sqrt_s *= std::sqrt(d.imu_noise_scale);
+  model.arw_rad_per_sqrt_s *= std::sqrt(d.imu_noise_scale.gyro);
+  model.vrw_mps_per_sqrt_s *= std::sqrt(d.imu_noise_scale.accel);
   d.imu_noise_applied = true;
 }
 

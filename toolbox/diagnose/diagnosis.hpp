@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "estimator/filter/imu_noise_scale.hpp"
 #include "toolbox/diagnose/confirmation.hpp"
 #include "toolbox/diagnose/model_check.hpp"
 #include "toolbox/diagnose/score_test.hpp"
@@ -55,9 +56,9 @@ struct Diagnosis {
   double cpu_s = 0.0;
   int filter_runs = 0;
   bool gate_opened = false;          // the model rejected too many measurements: diagnosed without gate
-  // The configured IMU white-noise PSD times this is what the data say (1: not measured or not above the
-  // configuration); when applied, configured_check is the model check with the configured noise.
-  double imu_noise_scale = 1.0;
+  // The configured IMU white-noise PSDs times these (gyro, accel) are what the data say (1: not measured or
+  // not above the configuration); when applied, configured_check is the model check with the configured noise.
+  est::ImuNoiseScale imu_noise_scale;
   bool imu_noise_applied = false;
   ModelCheck configured_check;
   bool consistent() const;  // the final model passes its check and the last step adds nothing

@@ -111,7 +111,7 @@ std::string step_outcome_json(const Diagnosis& d, size_t i) {
   std::string added = "null", estimate = "null", sigma = "null";
   if (i == 0 && d.imu_noise_applied) {  // the measured IMU noise took the configured one's place
     added = str("imu_noise");
-    estimate = "[" + num(d.imu_noise_scale) + "]";
+    estimate = "[" + num(d.imu_noise_scale.gyro) + ", " + num(d.imu_noise_scale.accel) + "]";
   } else if (i > 0) {
     const DiagnosisStep& prev = d.steps[i - 1];
     added = str(prev.added);
@@ -153,7 +153,9 @@ std::string diagnosis_json(const Diagnosis& d) {
                                 ", \"imu_noise\": \"configured\", \"added\": null, \"estimate\": null, \"sigma\": null, " +
                                 fit_json(d.configured_check) + "},\n    "
                           : std::string();
-  o << "  \"imu_noise\": {\"psd_scale\": " << num(d.imu_noise_scale) << ", \"applied\": "
+  o << "  \"imu_noise\": {\"psd_scale\": " << num(d.imu_noise_scale.larger())
+    << ", \"gyro_psd_scale\": " << num(d.imu_noise_scale.gyro) << ", \"accel_psd_scale\": " << num(d.imu_noise_scale.accel)
+    << ", \"applied\": "
     << (d.imu_noise_applied ? "true" : "false") << "},\n";
   o << "  \"steps\": [\n    " << configured_step
     << list_items(d.steps.size(), [&](size_t i) {

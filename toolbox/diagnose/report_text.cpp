@@ -123,7 +123,8 @@ void print_steps(std::ostream& out, const Diagnosis& d) {
   for (size_t i = 0; i < d.steps.size(); ++i) {
     std::string added = i == 0 ? (d.imu_noise_applied ? "imu_noise" : "(model under test)") : d.steps[i - 1].added, estimate;
     if (i == 0 && d.imu_noise_applied)
-      estimate = "x" + fmt("%.1f", d.imu_noise_scale) + " the configured PSD (measured)";
+      estimate = "gyro x" + fmt("%.1f", d.imu_noise_scale.gyro) + ", accel x" + fmt("%.1f", d.imu_noise_scale.accel) +
+                 " the configured PSD (measured)";
     if (i > 0)
       for (const Confirmation& c : d.steps[i - 1].confirmations)
         if (c.effect == added)

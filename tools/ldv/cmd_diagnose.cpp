@@ -71,7 +71,8 @@ void write_tuned_config(const std::string& config_path, const diag::Diagnosis& d
     for (const char* key : {"arw", "vrw"}) {
       if (!root["imunoise"][key] || !root["imunoise"][key].IsSequence()) continue;
       std::vector<double> v = root["imunoise"][key].as<std::vector<double>>();
-      for (double& x : v) x *= std::sqrt(d.imu_noise_scale);
+      const double psd_scale = std::string(key) == "arw" ? d.imu_noise_scale.gyro : d.imu_noise_scale.accel;
+      for (double& x : v) x *= std::sqrt(psd_scale);
       root["imunoise"][key] = v;
     }
   }

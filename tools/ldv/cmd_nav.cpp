@@ -81,11 +81,14 @@ void print_summary(const char* what, long imu_samples, double t0, double t1, lon
                ft.covariance_resets, ft.state_resets, ft.imu_rejected, ft.imu_gaps, ft.zupts_applied, ft.zupts_skipped_moving,
                est::describe_status(f.status()).c_str(), elapsed, imu_samples / std::max(elapsed, 1e-9),
                nav_path.c_str());
-  if (f.options().adapt_imu_noise)
+  if (f.options().adapt_imu_noise) {
+    const est::ImuNoiseScale run = f.imu_noise_psd_scale(), floor = f.imu_noise_floor();
     std::fprintf(stderr,
-                 "  IMU noise as installed: %.1fx the configured PSD at the end (%.1fx its density; adapted to the GNSS "
-                 "position NIS, never below the configuration; %ld fixes down-weighted by the robust update)\n",
-                 f.imu_noise_scale(), std::sqrt(f.imu_noise_scale()), ft.downweighted);
+                 "  IMU noise as installed: gyro %.1fx, accel %.1fx the configured PSD at the end (a standstill in the data "
+                 "showed gyro %.1fx, accel %.1fx: the floor; times %.2f adapted to the GNSS position NIS; %ld fixes "
+                 "down-weighted by the robust update)\n",
+                 run.gyro, run.accel, floor.gyro, floor.accel, f.imu_noise_scale(), ft.downweighted);
+  }
 }
 
 // A forward run written over an earlier smoothed one's name: its separation file would make `ldv report` show
