@@ -1,11 +1,14 @@
 // `ldv nav`'s inputs (toolbox/assess/nav_inputs): an IMU latency found from the turns but small enough for a
 // forward antenna lever arm to explain (a 1.5 m lever arm at 10 m/s looks like 150 ms) is decided by the filter
 // over the whole file, with and without it. Against simulated truth: a 147 ms lag is taken out (before: left
-// in, 23 of 401 fixes rejected on a tactical drive); a 1.2 m forward lever arm is not taken for a lag.
+// in, 23 of 401 fixes rejected on a tactical drive); a 1.2 m forward lever arm is not taken for a lag. A lag
+// taken out is refined by a filter pass with the time_offset state.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
 
+#include <cstdint>
+#include <cstdio>
 #include <filesystem>
 
 #include "sim/simulator.hpp"
@@ -16,13 +19,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
-assess::NavInputs load(const std::string& name, double latency_s, const std::vector<std::string>& effects) {
+assess::NavInputs load(const std::string& name, double latency_s, const std::vector<std::string>& effects,
+                       const std::string& grade = "hg1700", double gnss_rate_hz = 1.0, double vibration = 0.0,
+                       std::uint64_t seed = 1) {
   sim::SimRequest r;
-  r.grade = "hg1700";
-  r.seed = 1;
+  r.grade = grade;
+  r.seed = seed;
   r.duration_s = 400.0;
   r.scenario = "drive";  // 10 m/s turns, up to 25 m/s straights
-  r.gnss_rate_hz = 1.0;
+  r.gnss_rate_hz = gnss_rate_hz;
+  if (vibration > 0) r.vehicle.vibration_factor = vibration;
   r.effects = effects;
   if (latency_s > 0) r.vehicle.imu_latency_s = latency_s;
   sim::SimResult sim = sim::simulate(r);
@@ -43,6 +49,28 @@ TEST(ImuLatencyDecision, GivenALagALeverArmCouldExplain_WhenTheFilterFitsBetterW
   ASSERT_NE(in.imu_note.find("the filter needs"), std::string::npos) << in.imu_note;
   EXPECT_TRUE(in.imu_latency_applied);
   EXPECT_LT(std::abs(in.imu_latency.lag_s - 0.147), 3.0 * in.imu_latency.sigma_s);
+  // Refined by a filter pass with the time_offset state: tighter, and still around the truth.
+  ASSERT_TRUE(in.imu_latency_refined.done) << in.imu_note;
+  EXPECT_LT(in.imu_latency_refined.sigma_s, in.imu_latency.sigma_s);
+  EXPECT_LT(std::abs(in.imu_latency_refined.lag_s - 0.147), 3.0 * in.imu_latency_refined.sigma_s);
+}
+
+// A consumer MEMS IMU 240 ms late, 4 Hz RTK: the filter pass with the time_offset state brings the turns'
+// estimate to within 2 ms. Vibrating at 10x its datasheet (seeds 1-6) the pass is biased late by 5-26 ms with
+// a sigma of 4.6 ms, no better than the turns' 10-12 ms sigma says (open, see the closing note of issue 12):
+// so there only that is checked, that it stays within the turns' own 3 sigma of the truth.
+TEST(ImuLatencyDecision, GivenAMemsImuLateBy240ms_ThenTheFilterPassRefinesTheTurnsEstimate) {
+  for (const double vibration : {0.0, 10.0}) {
+    SCOPED_TRACE(vibration);
+    const assess::NavInputs in = load(vibration > 0 ? "mems_vibrating" : "mems", 0.240, {}, "3dm-gx2", 4.0, vibration, 4);
+    ASSERT_TRUE(in.imu_latency_applied) << in.imu_note;
+    ASSERT_TRUE(in.imu_latency_refined.done) << in.imu_note;
+    std::printf("turns %.1f +- %.1f ms, refined %.1f +- %.1f ms, true 240 ms\n", 1e3 * in.imu_latency.lag_s,
+                1e3 * in.imu_latency.sigma_s, 1e3 * in.imu_latency_refined.lag_s, 1e3 * in.imu_latency_refined.sigma_s);
+    EXPECT_LT(in.imu_latency_refined.sigma_s, 0.7 * in.imu_latency.sigma_s);
+    const double allowed_s = vibration > 0 ? 3.0 * in.imu_latency.sigma_s : 3.0 * in.imu_latency_refined.sigma_s;
+    EXPECT_LT(std::abs(in.imu_latency_refined.lag_s - 0.240), allowed_s);
+  }
 }
 
 TEST(ImuLatencyDecision, GivenAForwardLeverArmAndNoLag_ThenNoLagIsTakenOut) {

@@ -42,6 +42,10 @@ struct NavInputArgs {
   // is significant (estimator/calibrate/imu_latency.hpp); "off". Empty: ldv.imu_latency, else auto (off
   // with --kfgins-compatible or a given imu_time_shift_s).
   std::string imu_latency;
+  // A latency taken out is refined by a filter pass with the time_offset state (its residual, the estimate's
+  // sigma as the prior), unless the model has time_offset already. Off in `ldv diagnose` (whose check judges
+  // the model it is given, and which names time_offset itself when the data ask for it).
+  bool refine_latency_in_filter = true;
   // The tagged CSV's axes into front-right-down: each entry is +-1..3 (device axis, sign), e.g. the
   // walk's x-forward, y-left, z-up device: {1, -2, -3}.
   std::vector<int> csv_axes = {1, 2, 3};
@@ -86,6 +90,11 @@ struct NavInputs {
   int gps_week = -1;
   est::ImuLatencyEstimate imu_latency;  // when estimated (NavInputArgs::imu_latency); applied if significant()
   bool imu_latency_applied = false;
+  // The latency after a filter pass with the time_offset state refined it (NavInputArgs::refine_latency_in_filter).
+  struct RefinedLatency {
+    bool done = false;
+    double lag_s = 0.0, sigma_s = 0.0;
+  } imu_latency_refined;
   // What was decided about the GNSS velocities (estimator/calibrate/gnss_velocity_check.hpp), "" if none.
   std::string gnss_velocity_note;
   std::vector<InputFileCounts> file_counts;  // IMU then GNSS

@@ -93,7 +93,9 @@ void write_tuned_config(const std::string& config_path, const diag::Diagnosis& d
 }
 
 void run_diagnose(const DiagnoseArgs& a) {
-  assess::NavInputs loaded = assess::load_nav_inputs(a.inputs);
+  assess::NavInputArgs inputs = a.inputs;
+  inputs.refine_latency_in_filter = false;  // the model under test is the user's: time_offset is the diagnosis's to name
+  assess::NavInputs loaded = assess::load_nav_inputs(inputs);
   diag::DiagnoseInputs in;
   in.cfg = loaded.config;
   in.imu = std::move(loaded.imu);
