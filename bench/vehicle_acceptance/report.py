@@ -22,7 +22,8 @@ for r in rows:
             parts.append(f"{s['added']} {est} {s['accepted_fixes']}/{s['total_fixes']} NIS{s['mean_nis']:.2f}")
         diag = ("**CONS** " if j["consistent"] else "**NOT cons** ") + "; ".join(parts)
         if not j["consistent"]: fails["C4 diag consistent"].append((r["name"], "not consistent"))
-    lat = (f"{r['lat_found_ms']:.0f}±{r['lat_sig_ms']:.0f} / {r['lat_true_ms']:.0f} ({r['lat_z']:+.1f}{', applied' if r['lat_applied'] else ''})")
+    lat = (f"{r['lat_found_ms']:.0f}±{r['lat_sig_ms']:.0f} / {r['lat_true_ms']:.0f} ({r['lat_z']:+.1f}{', applied' if r['lat_applied'] else ''}"
+           f"{', refined' if r.get('lat_refined') else ''})")
     rl = f"{r['realign'][0]-345600:.0f}" if r["realign"] else ""
     orc = f" ({r['oracle_innov_ratio_h_good']:.1f},{r['oracle_innov_ratio_d_good']:.1f})" if "oracle_innov_ratio_h_good" in r else ""
     T.append(f"| {r['name']} | {r['used_pct_processed']:.1f}/{r['used_pct_good']:.1f} | {r['gate_rej']} | {r['outliers_rejected']}/{r['outliers_in_window']} | {rl} | {r['h_rms_m']:.3f} | "
