@@ -345,7 +345,9 @@ SimResult simulate(const SimRequest& req, const std::function<void(double)>& pro
   // accelerometer alone, hg1900 109 s, 3dm-gx2 50 s); 1 h when no axis has a B.
   nz.corr_time_s = mean_gm_time_s({&grade.gyro, &grade.accel});
   const auto in_run = [&](const TriadErrorModel& s) {
-    return (s.instability_B.cwiseAbs2() + s.rate_rw_K.cwiseAbs2() * (0.5 * nz.corr_time_s)).cwiseSqrt().eval();
+    Vec3 std;
+    for (int i = 0; i < 3; ++i) std(i) = kfgins_single_bias_std(s.instability_B(i), s.rate_rw_K(i), nz.corr_time_s);
+    return std;
   };
   nz.gyro_bias_std_rad_s = in_run(grade.gyro);
   nz.accel_bias_std_mps2 = in_run(grade.accel);

@@ -2,6 +2,7 @@
 // KF-GINS YAML configuration, read as KF-GINS reads it (same keys, same engineering units), converted
 // to SI once here. Optional keys stay optional: no initpos/initvel/initatt means "align from the data".
 // ldvnav-specific settings live under an `ldv:` section that KF-GINS ignores.
+#include <cmath>
 #include <optional>
 #include <string>
 
@@ -21,6 +22,13 @@ struct KfGinsImuNoise {
   Vec3 accel_scale_std = Vec3::Zero();          // yaml: asstd [ppm]
   double corr_time_s = 3600.0;                  // yaml: corrtime [h]
 };
+
+// KF-GINS models the in-run bias as one Gauss-Markov process (gbstd/abstd, corrtime). A sensor with a
+// Gauss-Markov sigma B and a rate random walk K: the single process whose variance after the correlation
+// time T matches, B^2 + K^2 T / 2 (what `ldv sim` and `ldv allan --noise-config` both write).
+inline double kfgins_single_bias_std(double gm_sigma, double rate_rw_K, double corr_time_s) {
+  return std::sqrt(gm_sigma * gm_sigma + rate_rw_K * rate_rw_K * 0.5 * corr_time_s);
+}
 
 struct KfGinsConfig {
   std::string config_path;  // the file this came from (for messages)

@@ -5,7 +5,9 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
+#include "common/formats/kfgins_config.hpp"
 #include "common/io/output_file.hpp"
 #include "toolbox/allan/sensor_units.hpp"
 
@@ -301,6 +303,14 @@ std::string kfgins_noise_yaml(const std::vector<ChannelResult>& results) {
   }
   if (gyro.empty() && accel.empty()) return "";
   const double deg = M_PI / 180.0;
+  auto term = [](const NoiseFit& f, ModelTerm t) { return f[t].in_model ? f[t].value : 0.0; };
+  // KF-GINS has one correlation time: the median over the channels; its gbstd/abstd carry K as well
+  // (kfgins_single_bias_std), as `ldv sim` writes them.
+  std::vector<double> taus;
+  for (const auto* ch : {&gyro, &accel})
+    for (const ChannelResult* r : *ch) taus.push_back(bias_process(*r->fit).time_constant_s);
+  std::nth_element(taus.begin(), taus.begin() + taus.size() / 2, taus.end());
+  const double corr_time_s = taus[taus.size() / 2];
   std::ostringstream o;
   auto list = [&](const std::vector<const ChannelResult*>& ch, auto value) {
     o << "[";
@@ -313,28 +323,45 @@ std::string kfgins_noise_yaml(const std::vector<ChannelResult>& results) {
     }
     o << "]";
   };
-  std::vector<double> taus;
+  auto single_bias = [&](const NoiseFit& f) {
+    return kfgins_single_bias_std(bias_process(f).sigma, term(f, ModelTerm::kK), corr_time_s);
+  };
   o << "# ldv allan: noise for ldv nav (KF-GINS imunoise keys, engineering units)\nimunoise:\n";
   if (!gyro.empty()) {
     o << "  arw: ";
     list(gyro, [&](const NoiseFit& f) { return f[ModelTerm::kN].value * 60.0 / deg; });
     o << "    # [deg/sqrt(h)]\n  gbstd: ";
-    list(gyro, [&](const NoiseFit& f) { return bias_process(f).sigma * 3600.0 / deg; });
-    o << "    # [deg/h]\n";
-    for (auto* r : gyro) taus.push_back(bias_process(*r->fit).time_constant_s);
+    list(gyro, [&](const NoiseFit& f) { return single_bias(f) * 3600.0 / deg; });
+    o << "    # [deg/h] Gauss-Markov sigma and K over corrtime\n";
   }
   if (!accel.empty()) {
     o << "  vrw: ";
     list(accel, [&](const NoiseFit& f) { return f[ModelTerm::kN].value * 60.0; });
     o << "    # [m/s/sqrt(h)]\n  abstd: ";
-    list(accel, [&](const NoiseFit& f) { return bias_process(f).sigma * 1e5; });
-    o << "    # [mGal]\n";
-    for (auto* r : accel) taus.push_back(bias_process(*r->fit).time_constant_s);
+    list(accel, [&](const NoiseFit& f) { return single_bias(f) * 1e5; });
+    o << "    # [mGal] Gauss-Markov sigma and K over corrtime\n";
   }
-  std::nth_element(taus.begin(), taus.begin() + taus.size() / 2, taus.end());
   char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6g", taus[taus.size() / 2] / 3600.0);
+  std::snprintf(buf, sizeof buf, "%.6g", corr_time_s / 3600.0);
   o << "  corrtime: " << buf << "    # [h] median over the channels (KF-GINS has one)\n";
+  // geoldv51's moving bias per term (SI; estimator/run/run_navigation.cpp reads them): the Gauss-Markov
+  // sigma with the triad's mean time constant, the rate random walk K and the ramp R.
+  o << "ldv:  # geoldv51's moving bias per term, SI (ldv nav --model geoldv51)\n";
+  for (const auto& [ch, prefix, gm, rw, ramp] :
+       {std::tuple{&gyro, "moving_bias_gyro_", "gm_rad_s", "rw_rad_s_sqrt_s", "ramp_rad_s2"},
+        std::tuple{&accel, "moving_bias_accel_", "gm_mps2", "rw_mps2_sqrt_s", "ramp_mps3"}}) {
+    if (ch->empty()) continue;
+    double sum_t = 0.0;
+    for (const ChannelResult* r : *ch) sum_t += bias_process(*r->fit).time_constant_s;
+    o << "  " << prefix << gm << ": ";
+    list(*ch, [&](const NoiseFit& f) { return bias_process(f).sigma; });
+    std::snprintf(buf, sizeof buf, "%.6g", sum_t / static_cast<double>(ch->size()));
+    o << "\n  " << prefix << "gm_time_s: " << buf << "\n  " << prefix << rw << ": ";
+    list(*ch, [&](const NoiseFit& f) { return term(f, ModelTerm::kK); });
+    o << "\n  " << prefix << ramp << ": ";
+    list(*ch, [&](const NoiseFit& f) { return term(f, ModelTerm::kR); });
+    o << "\n";
+  }
   return o.str();
 }
 
