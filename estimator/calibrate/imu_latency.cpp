@@ -159,7 +159,8 @@ ImuLatencyEstimate estimate_imu_latency(const std::vector<ImuIncrement>& imu, co
     for (int i = -n_coarse; i <= n_coarse; i += 4) sparse.push_back(i);
     const int sparse_best = best_of(sparse);
     std::vector<int> dense;
-    for (int i = std::max(-n_coarse, sparse_best - 6); i <= std::min(n_coarse, sparse_best + 6); ++i) dense.push_back(i);
+    for (int i = std::max(-n_coarse, sparse_best - 6); i <= std::min(n_coarse, sparse_best + 6); ++i)
+      dense.push_back(i);
     const double coarse_best_s = best_of(dense) * coarse_s;
     if (std::abs(coarse_best_s) >= o.max_lag_s - coarse_s) return false;  // at the edge of the search
     const int n = 20;                                                    // fine grid: coarse best +- 20 ms

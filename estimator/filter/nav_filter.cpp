@@ -256,8 +256,8 @@ void NavFilter::run_aids() {
   // every sample cost 5 % of a run.
   LinearizationPoint lp;
   const auto context = [&] {
-    return AidContext{c_.nav, lp, layout_, opt_, c_.P, c_.detector, c_.f_n_smooth_mps2, gnss_recent, imu_noise_psd_scale().gyro,
-                      faults_};
+    return AidContext{c_.nav, lp, layout_, opt_, c_.P, c_.detector, c_.f_n_smooth_mps2,
+                      gnss_recent, imu_noise_psd_scale().gyro, faults_};
   };
   std::vector<Measurement> measurements;
   for (UpdaterSlot& updater : c_.updaters) {

@@ -82,7 +82,7 @@ class NavSession {
   const std::string& initialisation() const { return initialisation_; }
   // A turn-on gyro bias the alignment's static start showed, taken out of every increment (else 0).
   const Vec3& gyro_bias_seed_rad_s() const { return gyro_bias_seed_rad_s_; }
-  // The filter's initial epoch, and the IMU noise scale it started with (FilterOptions::adapt_imu_noise).
+  // The filter's initial epoch, and the IMU noise floor it runs with (FilterOptions::adapt_imu_noise).
   double started_at_s() const { return started_at_s_; }
   const ImuNoiseScale& imu_noise_floor() const { return imu_noise_floor_; }
   long imu_samples_used() const { return imu_used_; }

@@ -4,15 +4,13 @@
 // sensor's true terms (NEES aided, the drift inside the outages against the filter's own sigma), for
 // kfgins21 (one Gauss-Markov bias, K folded in) and geoldv51 (its moving bias per term).
 #include <gtest/gtest.h>
-
 #include <unistd.h>
+#include <yaml-cpp/yaml.h>
 
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <tuple>
-
-#include <yaml-cpp/yaml.h>
 
 #include "common/formats/kfgins_config.hpp"
 #include "estimator/run/run_navigation.hpp"
@@ -34,8 +32,10 @@ std::vector<allan::PhaseSeries> channels_of(const sim::SimResult& s) {
     for (int axis = 0; axis < 3; ++axis) {
       std::vector<double> y;
       y.reserve(s.imu.size());
-      for (const ImuIncrement& inc : s.imu) y.push_back((sensor == 0 ? inc.dtheta_b_rad : inc.dvel_b_mps)(axis) / inc.dt_s);
-      out.push_back(allan::phase_from_rates(std::move(y), dt, (sensor == 0 ? "gyro_" : "accel_") + std::string(1, "xyz"[axis]),
+      for (const ImuIncrement& inc : s.imu)
+        y.push_back((sensor == 0 ? inc.dtheta_b_rad : inc.dvel_b_mps)(axis) / inc.dt_s);
+      out.push_back(allan::phase_from_rates(std::move(y), dt,
+                                            (sensor == 0 ? "gyro_" : "accel_") + std::string(1, "xyz"[axis]),
                                             sensor == 0 ? "rad/s" : "m/s^2"));
     }
   return out;
@@ -88,10 +88,11 @@ TEST(AllanToFilter, TheIdentifiedNoiseKeepsTheFilterAsConsistentAsTheTrueTerms) 
     FilterOptions truth_terms = options_from_kfgins(run.kfgins), allan_terms = options_from_kfgins(identified);
     truth_terms.model = allan_terms.model = model;
     const test::Accuracy t = test::evaluate(run, truth_terms), a = test::evaluate(run, allan_terms);
-    std::printf("[ info ] %s NEES pos/vel/att: true terms %.2f %.2f %.2f, Allan's %.2f %.2f %.2f; largest outage drift "
-                "%.2f m (sigma %.2f), Allan's %.2f m (sigma %.2f)\n",
-                model.c_str(), t.nees_pos, t.nees_vel, t.nees_att, a.nees_pos, a.nees_vel, a.nees_att, t.outage_drift_m,
-                t.outage_drift_sigma_m, a.outage_drift_m, a.outage_drift_sigma_m);
+    std::printf(
+        "[ info ] %s NEES pos/vel/att: true terms %.2f %.2f %.2f, Allan's %.2f %.2f %.2f; largest outage drift "
+        "%.2f m (sigma %.2f), Allan's %.2f m (sigma %.2f)\n",
+        model.c_str(), t.nees_pos, t.nees_vel, t.nees_att, a.nees_pos, a.nees_vel, a.nees_att, t.outage_drift_m,
+        t.outage_drift_sigma_m, a.outage_drift_m, a.outage_drift_sigma_m);
     // Consistent: the mean NEES (3 dof) inside [3/4, 3 x 3] where the true terms are, and the drift inside
     // the outages within 3 sigma of what the filter says.
     for (const auto& [allan_nees, true_nees, what] :

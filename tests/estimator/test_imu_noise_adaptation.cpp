@@ -113,8 +113,9 @@ TEST(ImuNoiseAdaptation, GyroAndAccelVibrationMeasuredApartKeepTheAttitudeConsis
   EXPECT_NEAR(sum.imu_noise_floor.gyro, 100.0, 25.0);
   EXPECT_NEAR(sum.imu_noise_floor.accel, 100.0, 25.0);
   const test::Accuracy a = test::evaluate(sim, datasheet, 60.0);
-  std::printf("[ info ] floor gyro %.0fx accel %.0fx; attitude NEES %.2f (3 dof), roll/pitch RMS %.3f deg, yaw %.3f deg\n",
-              sum.imu_noise_floor.gyro, sum.imu_noise_floor.accel, a.nees_att, a.roll_pitch_rms_deg, a.yaw_rms_deg);
+  std::printf(
+      "[ info ] floor gyro %.0fx accel %.0fx; attitude NEES %.2f (3 dof), roll/pitch RMS %.3f deg, yaw %.3f deg\n",
+      sum.imu_noise_floor.gyro, sum.imu_noise_floor.accel, a.nees_att, a.roll_pitch_rms_deg, a.yaw_rms_deg);
   EXPECT_LT(a.nees_att, 3.0 * 3.0) << "attitude error beyond what the filter's covariance says";
   EXPECT_LT(a.nees_pos, 3.0 * 3.0);
 }

@@ -79,7 +79,8 @@ TEST(InstalledImuNoise, GivenEngineHarmonicsOnTopOfTheVibration_ThenTheWhiteNois
   const InstalledImuNoise noise = measure_installed_imu_noise(sim.imu, sim.gnss);
   ASSERT_TRUE(noise.found);
   const ImuNoiseScale psd = noise.psd_scale(datasheet.arw_rad_per_sqrt_s, datasheet.vrw_mps_per_sqrt_s);
-  std::printf("[ info ] PSD scales with engine harmonics: gyro %.0fx, accel %.0fx (white: 100x)\n", psd.gyro, psd.accel);
+  std::printf("[ info ] PSD scales with engine harmonics: gyro %.0fx, accel %.0fx (white: 100x)\n", psd.gyro,
+              psd.accel);
   EXPECT_GT(psd.gyro, 75.0);
   EXPECT_LT(psd.gyro, 140.0);
   EXPECT_GT(psd.accel, 75.0);

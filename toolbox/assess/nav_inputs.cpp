@@ -213,11 +213,13 @@ void refine_latency_with_filter(const NavInputArgs& a, NavInputs& in) {
   if (std::isfinite(tau_s) && sigma_s < 0.7 * prior_s && std::abs(tau_s) < 4.0 * prior_s) {
     in.imu = shifted(in.imu, -tau_s);
     in.imu_latency_refined = {true, in.imu_latency.lag_s - tau_s, sigma_s};
-    std::snprintf(note, sizeof note, "; refined by a filter pass with the time_offset state to %.1f +- %.1f ms, taken out",
+    std::snprintf(note, sizeof note,
+                  "; refined by a filter pass with the time_offset state to %.1f +- %.1f ms, taken out",
                   1e3 * in.imu_latency_refined.lag_s, 1e3 * sigma_s);
   } else {
-    std::snprintf(note, sizeof note, "; a filter pass with the time_offset state did not refine it (%+.1f +- %.1f ms left)",
-                  -1e3 * tau_s, 1e3 * sigma_s);
+    std::snprintf(note, sizeof note,
+                  "; a filter pass with the time_offset state did not refine it (%+.1f +- %.1f ms left)", -1e3 * tau_s,
+                  1e3 * sigma_s);
   }
   in.imu_note += note;
 }

@@ -94,7 +94,7 @@ void write_tuned_config(const std::string& config_path, const diag::Diagnosis& d
 
 void run_diagnose(const DiagnoseArgs& a) {
   assess::NavInputArgs inputs = a.inputs;
-  inputs.refine_latency_in_filter = false;  // the model under test is the user's: time_offset is the diagnosis's to name
+  inputs.refine_latency_in_filter = false;  // the model under test is the user's; time_offset is the diagnosis's
   assess::NavInputs loaded = assess::load_nav_inputs(inputs);
   diag::DiagnoseInputs in;
   in.cfg = loaded.config;
