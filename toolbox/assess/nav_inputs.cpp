@@ -195,20 +195,22 @@ void refine_latency_with_filter(const NavInputArgs& a, NavInputs& in) {
   o.use_gnss_velocity = false;  // positions only: a GNSS velocity's own lag would take sides
   const std::vector<std::string> model = est::resolve_model(o.model, o.add, o.drop);
   if (std::find(model.begin(), model.end(), "time_offset") != model.end()) return;  // the user's own
+  if (std::find(o.drop.begin(), o.drop.end(), "time_offset") != o.drop.end()) return;  // the user's wish
   const double prior_s = std::max(in.imu_latency.sigma_s, 0.002);
   o.add.push_back("time_offset");
   o.time_offset_init_s = 0.0;
   o.time_offset_std_s = prior_s;
-  est::NavFilter filter(o);
+  double tau_s = NAN, sigma_s = NAN;
   try {
+    est::NavFilter filter(o);
     est::run_navigation(in.imu, in.gnss, in.config, filter, {});
+    const est::StateBlock* b = filter.layout().find("time_offset");
+    if (!b) return;
+    tau_s = filter.effect_state()(b->offset - est::kNavDim);
+    sigma_s = std::sqrt(std::max(0.0, filter.covariance()(b->offset, b->offset)));
   } catch (const std::exception&) {
     return;  // the run itself will say what is wrong
   }
-  const est::StateBlock* b = filter.layout().find("time_offset");
-  if (!b) return;
-  const double tau_s = filter.effect_state()(b->offset - est::kNavDim);
-  const double sigma_s = std::sqrt(std::max(0.0, filter.covariance()(b->offset, b->offset)));
   char note[200];
   if (std::isfinite(tau_s) && sigma_s < 0.7 * prior_s && std::abs(tau_s) < 4.0 * prior_s) {
     in.imu = shifted(in.imu, -tau_s);
