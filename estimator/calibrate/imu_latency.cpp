@@ -101,17 +101,19 @@ ImuLatencyEstimate estimate_imu_latency(const std::vector<ImuIncrement>& imu, co
   }
   out.median_speed_mps = median_in_place(speeds);
   out.intervals = static_cast<int>(iv.size());
-  for (const CourseInterval& c : iv)
-    out.turning_intervals += std::abs(c.dchi_rad) / c.dt_s() > o.min_turn_rad_s;
+  for (const CourseInterval& c : iv) out.turning_intervals += std::abs(c.dchi_rad) / c.dt_s() > o.min_turn_rad_s;
   if (out.turning_intervals < o.min_intervals) return out;
+  // The course change the track shows minus the one the gyros sensed over the same spans shifted by the lag.
+  auto course_change_error = [&](const CourseInterval& c, double lag_s) {
+    return c.dchi_rad - (h.mean(c.a1_s + lag_s, c.b1_s + lag_s) - h.mean(c.a0_s + lag_s, c.b0_s + lag_s));
+  };
   // Residuals at a lag, with the constant gyro bias (rate about the vertical) fitted by least squares.
   auto residuals = [&](const std::vector<CourseInterval>& set, double lag_s) {
     std::vector<double> e(set.size());
     double sxy = 0, sxx = 0;
     for (size_t k = 0; k < set.size(); ++k) {
-      const CourseInterval& c = set[k];
-      e[k] = c.dchi_rad - (h.mean(c.a1_s + lag_s, c.b1_s + lag_s) - h.mean(c.a0_s + lag_s, c.b0_s + lag_s));
-      sxy += e[k] * c.dt_s(), sxx += c.dt_s() * c.dt_s();
+      e[k] = course_change_error(set[k], lag_s);
+      sxy += e[k] * set[k].dt_s(), sxx += set[k].dt_s() * set[k].dt_s();
     }
     for (size_t k = 0; k < set.size(); ++k) e[k] -= sxy / sxx * set[k].dt_s();
     return e;
@@ -127,8 +129,7 @@ ImuLatencyEstimate estimate_imu_latency(const std::vector<ImuIncrement>& imu, co
       const double t = c.dt_s();
       s_tt += t * t;
       for (size_t j = 0; j < lags_s.size(); ++j) {
-        const double lag = lags_s[j];
-        const double e = c.dchi_rad - (h.mean(c.a1_s + lag, c.b1_s + lag) - h.mean(c.a0_s + lag, c.b0_s + lag));
+        const double e = course_change_error(c, lags_s[j]);
         s_ee[j] += e * e;
         s_et[j] += e * t;
       }
@@ -163,7 +164,7 @@ ImuLatencyEstimate estimate_imu_latency(const std::vector<ImuIncrement>& imu, co
       dense.push_back(i);
     const double coarse_best_s = best_of(dense) * coarse_s;
     if (std::abs(coarse_best_s) >= o.max_lag_s - coarse_s) return false;  // at the edge of the search
-    const int n = 20;                                                    // fine grid: coarse best +- 20 ms
+    const int n = 20;                                                     // fine grid: coarse best +- 20 ms
     std::vector<double> fine_lags_s(2 * n + 1);
     for (int i = 0; i <= 2 * n; ++i) fine_lags_s[i] = coarse_best_s + (i - n) * step_s;
     const std::vector<double> cost = misfits(set, fine_lags_s);
