@@ -34,6 +34,7 @@ void insert_in_time_order(Queue& q, T item, double t_s) {
 NavSession::NavSession(SessionOptions options, NavFilter& filter, EpochSink on_epoch)
     : o_(std::move(options)), on_epoch_(std::move(on_epoch)), filter_(filter), aligner_(o_.alignment) {
   if (o_.alignment.speed_min_mps > kSlowCourseSpeed_mps) slow_aligner_.emplace(slow_course_options());
+  if (o_.imu_latency_window) latency_window_.emplace(*o_.imu_latency_window);
 }
 
 AlignmentOptions NavSession::slow_course_options() const {
@@ -46,7 +47,17 @@ void NavSession::set_warm_start(const NavState& saved, const NavStd& saved_std) 
   warm_ = std::make_pair(saved, saved_std);
 }
 
-void NavSession::add_imu(const ImuIncrement& imu, int week, double arrival_s) {
+void NavSession::add_imu(const ImuIncrement& raw, int week, double arrival_s) {
+  ImuIncrement imu = raw;
+  if (latency_window_) {
+    latency_window_->add_imu(raw);
+    imu.t_s -= latency_window_->lag_s();
+    if (imu.t_s <= latest_retimed_imu_t_s_) {
+      ++imu_dropped_retimed_;
+      return;
+    }
+    latest_retimed_imu_t_s_ = imu.t_s;
+  }
   latest_imu_seen_t_s_ = std::max(latest_imu_seen_t_s_, imu.t_s);
   latest_imu_arrival_s_ = arrival_s;
   if (imu.t_s < o_.start_time_s || imu.t_s > o_.end_time_s) {
@@ -84,6 +95,7 @@ void NavSession::add_imu(const ImuIncrement& imu, int week, double arrival_s) {
 }
 
 void NavSession::add_gnss(const GnssFix& fix, double arrival_s) {
+  if (latency_window_) latency_window_->add_gnss(fix);
   latest_gnss_t_s_ = std::max(latest_gnss_t_s_, fix.t_s);  // also while navigating: an alignment may be redone
   if (navigating()) {
     if (fix.t_s <= started_at_s_) return;  // before the initial epoch: not used, however late it arrives

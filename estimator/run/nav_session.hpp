@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "estimator/calibrate/imu_latency_window.hpp"
 #include "estimator/filter/nav_filter.hpp"
 #include "estimator/ins/alignment.hpp"
 #include "estimator/run/heading_check.hpp"
@@ -50,6 +51,10 @@ struct SessionOptions {
   // aligned again while moving, with at least 4 body headings (the axis-aligned mountings).
   double heading_failed_rad = 30.0 * kDegToRad;
   double heading_failed_for_s = 5.0;
+  // The IMU latency looked for live, over a sliding window (imu_latency_window.hpp), and taken out of the
+  // IMU stamps from the moment it is found. Offline runs estimate it over the whole file before the session
+  // (toolbox/assess/nav_inputs.hpp) and leave this unset.
+  std::optional<ImuLatencyWindowOptions> imu_latency_window;
 };
 
 class NavSession {
@@ -90,6 +95,10 @@ class NavSession {
   long other_readings_used() const { return others_used_; }
   // Alignments redone after the navigated heading failed (SessionOptions::heading_failed_rad).
   int realignments() const { return realignments_; }
+  // The live IMU latency (SessionOptions::imu_latency_window): nullptr when not looked for. IMU samples whose
+  // re-timed stamp fell at or before one already used (a lag taken out part-way through) are dropped.
+  const ImuLatencyWindow* imu_latency_window() const { return latency_window_ ? &*latency_window_ : nullptr; }
+  long imu_samples_dropped_retimed() const { return imu_dropped_retimed_; }
 
  private:
   struct QueuedImu {
@@ -146,6 +155,9 @@ class NavSession {
   std::deque<GnssFix> fixes_to_check_;  // handed to the filter, not yet to heading_check_
   std::optional<double> heading_failing_since_s_;
   int realignments_ = 0;
+  std::optional<ImuLatencyWindow> latency_window_;
+  double latest_retimed_imu_t_s_ = -1e300;
+  long imu_dropped_retimed_ = 0;
 };
 
 }  // namespace ldv::est

@@ -164,6 +164,20 @@ SessionOptions session_options_from(const KfGinsConfig& cfg, const FilterOptions
   return so;
 }
 
+bool imu_latency_wanted(const KfGinsConfig& cfg, const FilterOptions& filter, const std::string& requested,
+                        bool shift_given) {
+  std::string mode = requested;
+  if (mode.empty()) {
+    mode = ldv_key<std::string>(cfg, "imu_latency", "auto");
+    if (shift_given || !filter.robust_update) mode = "off";
+  }
+  if (mode != "auto" && mode != "off") {
+    const int line = has_ldv_key(cfg, "imu_latency") && requested.empty() ? cfg.ldv["imu_latency"].Mark().line + 1 : 0;
+    throw InputError(cfg.config_path, line, "imu_latency '" + mode + "': expected auto or off");
+  }
+  return mode == "auto";
+}
+
 double initialisation_epoch(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
                             const KfGinsConfig& cfg, const AlignmentOptions& alignment) {
   size_t i = first_imu_index(imu, cfg);

@@ -28,6 +28,13 @@ double ldv_number(const KfGinsConfig& cfg, const char* key, double fallback);
 SessionOptions session_options_from(const KfGinsConfig& cfg, const FilterOptions& filter,
                                     const AlignmentOptions* alignment = nullptr);
 
+// Whether the IMU latency is looked for in the data (offline over the file, imu_latency.hpp; live over a
+// sliding window, imu_latency_window.hpp): `requested` (auto | off) when given, else the key ldv.imu_latency,
+// else auto unless the user set the shift (`shift_given`: ldv.imu_time_shift_s, --imu-time-shift) or asked
+// for KF-GINS's behaviour (no robust update). InputError (file, line) on another value.
+bool imu_latency_wanted(const KfGinsConfig& cfg, const FilterOptions& filter, const std::string& requested,
+                        bool shift_given);
+
 struct RunCallbacks {
   std::function<void(const NavFilter&)> on_epoch;                       // after every IMU sample
   std::function<void(const InnovationRecord&)> on_innovation;           // every measurement decision

@@ -1,9 +1,18 @@
 #include "services/fusion/fusion_engine.hpp"
 
 #include "common/bus/message_conversions.hpp"
+#include "estimator/run/run_navigation.hpp"
 #include "estimator/update/odometer.hpp"
 
 namespace ldv {
+
+est::SessionOptions live_session_options(const KfGinsConfig& cfg, const est::FilterOptions& filter,
+                                         const est::AlignmentOptions* alignment) {
+  est::SessionOptions so = est::session_options_from(cfg, filter, alignment);
+  const bool shift_given = est::ldv_number(cfg, "imu_time_shift_s", 0.0) != 0.0;
+  if (est::imu_latency_wanted(cfg, filter, "", shift_given)) so.imu_latency_window = est::ImuLatencyWindowOptions{};
+  return so;
+}
 
 FusionEngine::FusionEngine(const est::SessionOptions& so)
     : filter_(so.filter), session_(so, filter_, [this](const est::NavFilter& f, int week) {

@@ -13,6 +13,7 @@
 #include <ldv_lcm/wheel_speed_t.hpp>
 #include <vector>
 
+#include "common/formats/kfgins_config.hpp"
 #include "estimator/filter/nav_filter.hpp"
 #include "estimator/run/nav_session.hpp"
 #include "services/fusion/warm_start.hpp"
@@ -20,6 +21,13 @@
 namespace ldv {
 
 enum class FusionMode : int { kInitialising = 0, kAligning = 1, kAided = 2, kFreeInertial = 3 };
+
+// The session a KF-GINS configuration describes, run live (the fusion service, `ldv nav --lcm-log`): as
+// `ldv nav` runs it over files (est::session_options_from), and the IMU latency looked for over a sliding
+// window (a live stream has no file to search first) unless the configuration rules it out
+// (est::imu_latency_wanted). InputError (file, line) on a wrong ldv.imu_latency.
+est::SessionOptions live_session_options(const KfGinsConfig& cfg, const est::FilterOptions& filter,
+                                         const est::AlignmentOptions* alignment = nullptr);
 
 struct FusionOutput {
   int gps_week = 0;
@@ -61,6 +69,7 @@ class FusionEngine {
   const est::NavFilter& filter() const { return filter_; }
   est::NavFilter& filter() { return filter_; }
   const std::string& initialisation() const { return session_.initialisation(); }
+  const est::NavSession& session() const { return session_; }
 
  private:
   est::NavFilter filter_;

@@ -69,7 +69,7 @@ int main(int argc, char** argv) {
     fo.history_s = cfg.history_s;
     // The session the KF-GINS configuration describes, as `ldv nav` runs it (given start, start/end time,
     // heading hypotheses, aids), with this service's alignment wait.
-    ldv::est::SessionOptions so = ldv::est::session_options_from(kcfg, fo);
+    ldv::est::SessionOptions so = ldv::live_session_options(kcfg, fo);
     so.align_wait_s = cfg.align_wait_s;
     ldv::FusionEngine engine(so);
     if (!cfg.state_file.empty()) {
@@ -87,6 +87,7 @@ int main(int argc, char** argv) {
     int last_week = 0;
     std::vector<ldv::FusionOutput> outputs;
     bool announced = false;
+    size_t latency_decisions_logged = 0;
 
     auto publish = [&](std::vector<ldv::FusionOutput>& outs) {
       for (size_t i = 0; i < outs.size(); ++i) {
@@ -107,6 +108,14 @@ int main(int argc, char** argv) {
       if (engine.navigating() && !announced) {
         spdlog::info("fusion: navigating ({})", engine.initialisation());
         announced = true;
+      }
+      if (const ldv::est::ImuLatencyWindow* w = engine.session().imu_latency_window();
+          w && w->decisions().size() > latency_decisions_logged) {
+        const ldv::est::ImuLatencyDecision& d = w->decisions().back();
+        spdlog::info("fusion: IMU stamps late by {:.1f} +- {:.1f} ms (found from {} turning GNSS intervals up to "
+                     "{:.3f} s; taken out of the stamps from {:.3f} s on)",
+                     1e3 * d.lag_s, 1e3 * d.sigma_s, d.turning_intervals, d.window_end_s, d.from_imu_t_s);
+        latency_decisions_logged = w->decisions().size();
       }
     };
 

@@ -115,7 +115,7 @@ TEST(SystemReplay, LiveTspiIsAccurateGapFreeAndEqualsTheLogReplay) {
   const KfGinsConfig kcfg = load_kfgins_config((dir / "kfgins.yaml").string());
   est::FilterOptions fo = est::options_from_kfgins(kcfg);
   fo.history_s = 3.0;
-  FusionEngine engine(est::session_options_from(kcfg, fo));
+  FusionEngine engine(live_session_options(kcfg, fo));  // as the service runs it
   std::map<long, FusionOutput> replay;
   replay_fusion_log(log, engine, [&](const FusionOutput& o) { replay[std::lround(o.state.t_s * 1000)] = o; });
   double max_diff_m = 0;

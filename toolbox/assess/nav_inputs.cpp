@@ -229,24 +229,8 @@ void refine_latency_with_filter(const NavInputArgs& a, NavInputs& in) {
 // IMU stamps late against GNSS time (a consumer IMU behind a USB or serial buffer): found from the data
 // and taken out before the filter sees them, unless the user set the shift or asked for KF-GINS's behaviour.
 void estimate_and_remove_imu_latency(const NavInputArgs& a, bool shift_given, NavInputs& in) {
-  std::string mode = a.imu_latency;
-  if (mode.empty()) {
-    mode = "auto";
-    if (has_ldv_key(in.config, "imu_latency")) {
-      const YAML::Node& ldv = in.config.ldv;
-      try {
-        mode = ldv["imu_latency"].as<std::string>();
-      } catch (const YAML::Exception&) {
-        throw InputError(in.config.config_path, ldv["imu_latency"].Mark().line + 1,
-                         "key 'ldv.imu_latency': expected auto or off");
-      }
-    }
-    // KF-GINS's behaviour (--kfgins-compatible or ldv.kfgins_compatible, which turns the robust update off).
-    if (shift_given || a.kfgins_compatible || !in.options.robust_update) mode = "off";
-  }
-  if (mode != "auto" && mode != "off")
-    throw InputError(in.config.config_path, 0, "imu_latency '" + mode + "': expected auto or off");
-  if (mode == "off" || in.imu.empty() || in.gnss.empty()) return;
+  const bool wanted = est::imu_latency_wanted(in.config, in.options, a.imu_latency, shift_given || a.kfgins_compatible);
+  if (!wanted || in.imu.empty() || in.gnss.empty()) return;
   in.imu_latency = est::estimate_imu_latency(in.imu, in.gnss);
   const est::ImuLatencyEstimate& e = in.imu_latency;
   char note[320];

@@ -148,7 +148,7 @@ std::unique_ptr<est::NavFilter> check_model(const NavArgs& a, const est::FilterO
 void run_lcm_log(const NavArgs& a, const KfGinsConfig& cfg, est::FilterOptions opt, const est::AlignmentOptions& ao) {
   const auto t_begin = std::chrono::steady_clock::now();
   opt.history_s = a.history_s;  // as the live service: late fixes re-process the IMU history
-  est::SessionOptions so = est::session_options_from(cfg, opt, &ao);
+  est::SessionOptions so = live_session_options(cfg, opt, &ao);
   so.align_wait_s = a.align_wait_s;
   FusionEngine engine(so);
   const std::string nav_path = default_nav_path(a, cfg);
@@ -184,6 +184,15 @@ void run_lcm_log(const NavArgs& a, const KfGinsConfig& cfg, est::FilterOptions o
         sum.corrupt_log_events);
     print_summary("replayed through FusionEngine", n, t0, t1, sum.gnss_messages, sum.initialisation, engine.filter(),
                   elapsed, nav_path);
+    if (const est::ImuLatencyWindow* w = engine.session().imu_latency_window()) {
+      for (const est::ImuLatencyDecision& d : w->decisions())
+        std::fprintf(stderr,
+                     "ldv nav: IMU stamps late by %.1f +- %.1f ms (live window up to %.3f s), taken out from %.3f s on\n",
+                     1e3 * d.lag_s, 1e3 * d.sigma_s, d.window_end_s, d.from_imu_t_s);
+      if (w->decisions().empty())
+        std::fprintf(stderr, "ldv nav: IMU latency looked for live: %d window estimates, none significant\n",
+                     w->estimates());
+    }
   }
 }
 
