@@ -9,8 +9,8 @@ import yaml
 out_dir, paper_path, seed = sys.argv[1], sys.argv[2], sys.argv[3]
 paper = yaml.safe_load(open(paper_path))["table12_outage_max_drift"]
 # The paper's columns: E N D position [m], E N D velocity [m/s], roll pitch yaw [deg].
-# ldv outage's components: east north down [m], v_north v_east v_down [m/s], roll pitch yaw [deg].
-ours_index = [0, 1, 2, 4, 3, 5, 6, 7, 8]
+# ldv outage's components are in the same order.
+ours_index = list(range(9))
 names = ["E [m]", "N [m]", "D [m]", "Ve [m/s]", "Vn [m/s]", "Vd [m/s]", "roll [deg]", "pitch [deg]", "yaw [deg]"]
 imus = [("HG1700", "hg1700-paper"), ("HG1900", "hg1900-paper"), ("3DM-GX2", "3dm-gx2-paper"),
         ("3DM-GX2", "3dm-gx2-paper-q-arcsec")]

@@ -205,6 +205,7 @@ RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vecto
   if (filter.options().adapt_imu_noise && filter.options().installed_noise_floor) {
     const InstalledImuNoise noise = measure_installed_imu_noise(imu, gnss);
     so.imu_noise_floor = noise.psd_scale(filter.options().arw_rad_per_sqrt_s, filter.options().vrw_mps_per_sqrt_s);
+    sum.imu_noise_standstill_s = noise.found ? noise.standstill_s : 0.0;
   }
   NavSession session(so, filter, [&](const NavFilter& f, int) {
     if (cb.on_innovation)

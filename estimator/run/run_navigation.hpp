@@ -51,6 +51,7 @@ struct RunSummary {
   // With FilterOptions::adapt_imu_noise: the factors on the configured IMU noise PSDs a standstill in the
   // data showed (the adaptation's floor), and the adapted factor on top of it at the end of the run.
   ImuNoiseScale imu_noise_floor;
+  double imu_noise_standstill_s = 0.0;  // the standstill it was measured over (0: none in the data, floor 1)
   double imu_noise_scale_end = 1.0;
 };
 

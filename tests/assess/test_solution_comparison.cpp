@@ -50,7 +50,7 @@ TEST(SolutionComparison, KnownOffsetIsRecoveredWithInterpolation) {
   const NavSeries a = moving(1000.05, 0.1, 500, Vec3(1.0, -2.0, 0.5), Vec3(0.1, -0.2, 0.05), Vec3(0.5, -0.3, 1.0) * kDegToRad);
   const ComparisonResult r = compare_solutions(a, b, {10.0, 1.5});
   EXPECT_EQ(r.epochs, 400);  // the first 10 s are settling
-  const double expect[kComponents] = {-2.0, 1.0, 0.5, 0.1, -0.2, 0.05, 0.5, -0.3, 1.0};  // E N D, vN vE vD, r p y
+  const double expect[kComponents] = {-2.0, 1.0, 0.5, -0.2, 0.1, 0.05, 0.5, -0.3, 1.0};  // E N D, vE vN vD, r p y
   for (int i = 0; i < kComponents; ++i) {
     EXPECT_NEAR(r.stats[i].mean, expect[i], 2e-4) << kComponentNames[i];
     EXPECT_NEAR(r.stats[i].rms, std::abs(expect[i]), 2e-4) << kComponentNames[i];

@@ -57,7 +57,7 @@ void print_outage_table(std::FILE* out, const OutageRun& run, const std::vector<
   std::fprintf(out, "Drift at the end of GNSS outages against the %s (paper Table 12 layout; |drift|, mean and max over the outages)\n",
                run.reference.c_str());
   std::fprintf(out, "%8s %3s %5s | %8s %8s %8s %8s | %7s %7s %7s | %7s %7s %7s\n", "outage", "n", "", "E [m]", "N [m]",
-               "D [m]", "hor [m]", "vN m/s", "vE m/s", "vD m/s", "roll", "pitch", "yaw[deg]");
+               "D [m]", "hor [m]", "vE m/s", "vN m/s", "vD m/s", "roll", "pitch", "yaw[deg]");
   for (const OutageLengthSummary& s : summary) {
     for (int row = 0; row < 2; ++row) {
       const auto& v = row == 0 ? s.mean_abs_end : s.max_abs_end;

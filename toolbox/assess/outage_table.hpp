@@ -1,6 +1,6 @@
 #pragma once
 // The paper's Table 12 from an outage run: per outage length, the mean and maximum over the outages of
-// the absolute drift at the end of each outage (E N D [m], vN vE vD [m/s], roll pitch yaw [deg]);
+// the absolute drift at the end of each outage (E N D [m], vE vN vD [m/s], roll pitch yaw [deg]);
 // the KF-GINS benchmark metric (RMS over outages of the maximum drift within each outage); and how
 // often the filter's own 3-sigma envelope held the drift.
 #include <array>

@@ -103,11 +103,11 @@ void add_error_section(HtmlPage& page, const std::string& dir, const NavSeries& 
     const char* stem;
     const char* title;
     const char* unit;
-    std::array<int, 3> comp;   // table components plotted (E N D / vN vE vD / r p y)
+    std::array<int, 3> comp;   // table components plotted (E N D / vE vN vD / r p y)
     std::array<int, 3> sigma;  // the matching 3-sigma columns (N E D order in the std file)
   };
   const Panel panels[3] = {{"error_position", "Position", "m", {1, 0, 2}, {0, 1, 2}},
-                           {"error_velocity", "Velocity", "m/s", {3, 4, 5}, {3, 4, 5}},
+                           {"error_velocity", "Velocity", "m/s", {4, 3, 5}, {3, 4, 5}},
                            {"error_attitude", "Attitude", "deg", {6, 7, 8}, {6, 7, 8}}};
   const char* axis_names[3][3] = {{"north", "east", "down"}, {"north", "east", "down"}, {"roll", "pitch", "yaw"}};
   std::vector<HtmlTable> tables;

@@ -9,13 +9,13 @@
 
 namespace ldv::assess {
 
-const std::array<const char*, kComponents> kComponentNames = {"east", "north", "down", "v_north", "v_east",
+const std::array<const char*, kComponents> kComponentNames = {"east", "north", "down", "v_east", "v_north",
                                                               "v_down", "roll", "pitch", "yaw"};
 const std::array<const char*, kComponents> kComponentUnits = {"m", "m", "m", "m/s", "m/s", "m/s", "deg", "deg", "deg"};
 
-// The paper lists position as E N D but velocity as N E D.
+// The paper's order (Tables 10-12): position E N D, velocity E N D.
 std::array<double, kComponents> table_components(const NavDifference& d) {
-  return {d.pos_ned_m.y(),   d.pos_ned_m.x(),   d.pos_ned_m.z(),   d.vel_ned_mps.x(),         d.vel_ned_mps.y(),
+  return {d.pos_ned_m.y(),   d.pos_ned_m.x(),   d.pos_ned_m.z(),   d.vel_ned_mps.y(),         d.vel_ned_mps.x(),
           d.vel_ned_mps.z(), d.rpy_rad.x() * kRadToDeg, d.rpy_rad.y() * kRadToDeg, d.rpy_rad.z() * kRadToDeg};
 }
 

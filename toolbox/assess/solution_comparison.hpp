@@ -8,7 +8,7 @@
 
 namespace ldv::assess {
 
-// Component order of every comparison table: E N D [m], vN vE vD [m/s], roll pitch yaw [deg].
+// Component order of every comparison table: E N D [m], vE vN vD [m/s], roll pitch yaw [deg].
 constexpr int kComponents = 9;
 extern const std::array<const char*, kComponents> kComponentNames;
 extern const std::array<const char*, kComponents> kComponentUnits;

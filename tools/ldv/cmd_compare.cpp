@@ -1,5 +1,5 @@
 // `ldv compare A.nav B.nav [--settle S] [--json]`: the paper's Tables 10-11, A minus B (B interpolated
-// at A's epochs): mean, std and RMS of E N D [m], vN vE vD [m/s], roll pitch yaw [deg].
+// at A's epochs): mean, std and RMS of E N D [m], vE vN vD [m/s], roll pitch yaw [deg].
 #include <cstdio>
 #include <memory>
 

@@ -70,8 +70,9 @@ std::string default_nav_path(const NavArgs& a, const KfGinsConfig& cfg) {
   return (fs::path(dir) / "KF_GINS_Navresult.nav").string();
 }
 
+// standstill_s: the standstill the IMU noise as installed was measured over (0: none).
 void print_summary(const char* what, long imu_samples, double t0, double t1, long fixes, const std::string& init,
-                   const est::NavFilter& f, double elapsed, const std::string& nav_path) {
+                   const est::NavFilter& f, double elapsed, const std::string& nav_path, double standstill_s) {
   const auto& ft = f.faults();
   std::fprintf(stderr,
                "ldv nav: %s: %ld IMU samples from %.3f to %.3f s, %ld GNSS fixes; initial state: %s\n"
@@ -83,11 +84,16 @@ void print_summary(const char* what, long imu_samples, double t0, double t1, lon
                nav_path.c_str());
   if (f.options().adapt_imu_noise) {
     const est::ImuNoiseScale run = f.imu_noise_psd_scale(), floor = f.imu_noise_floor();
+    char measured[96];
+    if (standstill_s > 0)
+      std::snprintf(measured, sizeof measured, "a %.0f s standstill in the data showed gyro %.1fx, accel %.1fx: the floor",
+                    standstill_s, floor.gyro, floor.accel);
+    else
+      std::snprintf(measured, sizeof measured, "no standstill in the data to measure it over: floor 1x");
     std::fprintf(stderr,
-                 "  IMU noise as installed: gyro %.1fx, accel %.1fx the configured PSD at the end (a standstill in the data "
-                 "showed gyro %.1fx, accel %.1fx: the floor; times %.2f adapted to the GNSS position NIS; %ld fixes "
-                 "down-weighted by the robust update)\n",
-                 run.gyro, run.accel, floor.gyro, floor.accel, f.imu_noise_scale(), ft.downweighted);
+                 "  IMU noise as installed: gyro %.1fx, accel %.1fx the configured PSD at the end (%s; times %.2f adapted "
+                 "to the GNSS position NIS; %ld fixes down-weighted by the robust update)\n",
+                 run.gyro, run.accel, measured, f.imu_noise_scale(), ft.downweighted);
   }
 }
 
@@ -183,7 +189,7 @@ void run_lcm_log(const NavArgs& a, const KfGinsConfig& cfg, est::FilterOptions o
         sum.imu_messages, sum.gnss_messages, sum.wheel_messages, sum.malformed, sum.other_messages,
         sum.corrupt_log_events);
     print_summary("replayed through FusionEngine", n, t0, t1, sum.gnss_messages, sum.initialisation, engine.filter(),
-                  elapsed, nav_path);
+                  elapsed, nav_path, 0.0);
     if (const est::ImuLatencyWindow* w = engine.session().imu_latency_window()) {
       for (const est::ImuLatencyDecision& d : w->decisions())
         std::fprintf(stderr,
@@ -281,7 +287,7 @@ void run_nav(const NavArgs& a) {
   if (show_progress) std::fprintf(stderr, "\r");
   if (!a.quiet)
     print_summary(a.smooth ? "files, smoothed" : "files", sum.imu_samples, sum.t_start_s, sum.t_end_s, sum.gnss_fixes,
-                  sum.initialisation, *filter, elapsed, nav_path);
+                  sum.initialisation, *filter, elapsed, nav_path, sum.imu_noise_standstill_s);
 }
 
 // `nav` and `smooth` take the same options (`smooth` = `nav --smooth`).
