@@ -135,6 +135,12 @@ void print_tables(std::FILE* out, const std::vector<ChannelResult>& results) {
       std::fprintf(out, "  sine amplitude %.5g %s at %.5g Hz (%s)\n", sine.value, r.unit.c_str(), sine.shape,
                    sine.resolved ? "resolved" : "not resolved");
     }
+    if (r.n_sigma_from_held_q > 0.0 || r.k_interval_spans_both_bias_models) {
+      const EngineeringUnit un = paper_unit(q, Term::kN);
+      std::fprintf(out, "  intervals: N's includes %.3g %s (1 sigma) from the uncertainty of the Q it holds%s\n",
+                   r.n_sigma_from_held_q * un.from_si, un.name,
+                   r.k_interval_spans_both_bias_models ? "; K's spans both bias models' (BIC's choice was close)" : "");
+    }
     if (r.information) {
       const RecordInformation& info = *r.information;
       const bool gm = f[ModelTerm::kGaussMarkov].in_model;
@@ -196,6 +202,8 @@ void write_json(const std::string& path, const std::string& input, const std::ve
           << "_resolved\": " << (t.resolved ? "true" : "false") << ", \"" << n
           << "_modelled\": " << (t.in_model ? "true" : "false");
       }
+      o << ",\n      \"N_sigma_from_held_Q\": " << num(r.n_sigma_from_held_q)
+        << ", \"K_interval_spans_both_bias_models\": " << (r.k_interval_spans_both_bias_models ? "true" : "false");
       o << ",\n      \"B_tau_s\": " << num(f.b_tau_s) << ", \"B_model\": " << quoted(gm ? "gauss_markov" : "flat")
         << ", \"B_T_s\": " << num(gm ? f[ModelTerm::kGaussMarkov].shape : 0.0)
         << ", \"B_T_s_sigma\": " << num(gm ? f[ModelTerm::kGaussMarkov].shape_sigma : 0.0);

@@ -10,9 +10,14 @@
 #include <stdexcept>
 #include <thread>
 
+#include "common/math/chi_square.hpp"
 #include "toolbox/allan/edf.hpp"
 
 namespace ldv::allan {
+
+double close_bias_model_bic(long observations) {
+  return std::max(6.0, std::log(static_cast<double>(std::max(2L, observations))));
+}
 
 std::vector<long> analysis_factors(const AnalysisOptions& opt, long n_phase, double tau0_s, Deviation dev) {
   const long dev_max = max_averaging_factor(dev, n_phase);
@@ -65,6 +70,30 @@ FitAttempt fit_channel(const PhaseSeries& s, const std::vector<StabilityPoint>& 
   return a;
 }
 
+// Q is held at the curve fit's value in the likelihood fit, and N shares the high frequencies with it: N refitted
+// with Q one sigma either side; half the difference is N's sigma from Q (0 without a Q).
+double n_sigma_from_held_q(const PhaseSeries& s, const NoiseFit& curve, const FitOptions& fo) {
+  const TermEstimate& q = curve[ModelTerm::kQ];
+  if (!q.in_model || !(q.value > 0.0) || !(q.sigma > 0.0)) return 0.0;
+  auto n_at = [&](double q_value) {
+    NoiseFit held = curve;
+    held[ModelTerm::kQ].value = q_value;
+    return whittle_fit(s, held, fo, fo.likelihood_block_s)[ModelTerm::kN].value;
+  };
+  try {
+    return 0.5 * std::abs(n_at(q.value + q.sigma) - n_at(std::max(0.0, q.value - q.sigma)));
+  } catch (const std::invalid_argument&) {
+    return 0.0;  // the fit itself succeeded at Q; the spread is then not known
+  }
+}
+
+// Widens a term's 1-sigma and interval by an independent 1-sigma `extra` (z: the interval's normal quantile).
+void widen(TermEstimate& t, double extra, double z) {
+  t.sigma = std::hypot(t.sigma, extra);
+  t.lo = std::max(0.0, t.value - std::hypot(t.value - t.lo, z * extra));
+  t.hi = t.value + std::hypot(t.hi - t.value, z * extra);
+}
+
 BiasModelCandidate candidate(const FitAttempt& a) {
   BiasModelCandidate c;
   c.fitted = a.refined.has_value();
@@ -104,6 +133,7 @@ ChannelResult analyze_channel(const PhaseSeries& s, const AnalysisOptions& opt) 
     choice.requested = fo.gauss_markov ? "gauss_markov" : fo.choose_bias_model ? "auto" : "flat";
     choice.criterion = "none";
     FitAttempt chosen = fit_channel(s, weighted, fo, with_likelihood);
+    std::optional<NoiseFit> other_model;  // the likelihood fit of the bias model not chosen
     choice.chosen = fo.gauss_markov ? "gauss_markov" : "flat";
     if (choice.requested == "auto") {
       if (!fo.b) {
@@ -133,9 +163,11 @@ ChannelResult analyze_channel(const PhaseSeries& s, const AnalysisOptions& opt) 
           choice.likelihood_ratio =
               2.0 * (choice.gauss_markov.log_likelihood - choice.flat.log_likelihood) / choice.taper_variance_factor;
           if (choice.gauss_markov.bic < choice.flat.bic) {
-            chosen = std::move(gm);
+            std::swap(chosen, gm);  // gm now holds the flat B: the model not chosen
             choice.chosen = "gauss_markov";
           }
+          if (std::abs(choice.flat.bic - choice.gauss_markov.bic) < close_bias_model_bic(choice.observations))
+            other_model = std::move(gm.refined);
         } else {
           choice.note = "Gauss-Markov fit failed (" + choice.gauss_markov.error + "): flat B";
         }
@@ -147,6 +179,16 @@ ChannelResult analyze_channel(const PhaseSeries& s, const AnalysisOptions& opt) 
         r.curve_fit = std::move(chosen.curve);
         r.fit = std::move(chosen.refined);
         r.likelihood = chosen.summary;
+        const double z = math::normal_quantile(0.5 + 0.5 * fo.interval_confidence);
+        r.n_sigma_from_held_q = n_sigma_from_held_q(s, *r.curve_fit, fo);
+        if (r.n_sigma_from_held_q > 0.0) widen((*r.fit)[ModelTerm::kN], r.n_sigma_from_held_q, z);
+        TermEstimate& k = (*r.fit)[ModelTerm::kK];
+        if (other_model && k.in_model && (*other_model)[ModelTerm::kK].in_model) {
+          const TermEstimate& k_other = (*other_model)[ModelTerm::kK];
+          k.lo = std::min(k.lo, k_other.lo);
+          k.hi = std::max(k.hi, k_other.hi);
+          r.k_interval_spans_both_bias_models = true;
+        }
         try {
           r.information = record_information(*r.fit, s.tau0_s, r.samples, fo.likelihood_block_s, fo.target_precision);
         } catch (const std::invalid_argument& e) {

@@ -69,7 +69,18 @@ struct ChannelResult {
   std::optional<RecordInformation> information;  // with the likelihood fit: bounds, record needed
   std::string likelihood_error;
   std::optional<BiasModelChoice> bias_model;  // with a fit: how its bias model was chosen
+  // What the likelihood fit's intervals carry beyond its own Fisher information (README.md, "Intervals"):
+  // N's 1-sigma from the uncertainty of the Q it holds, added in quadrature to N's sigma and interval;
+  double n_sigma_from_held_q = 0.0;
+  // and, when BIC's choice of the bias model was close (close_bias_model_bic), K's interval spans both
+  // models' (K is in both; the flat B and the GM sigma are different quantities and keep their own).
+  bool k_interval_spans_both_bias_models = false;
 };
+
+// BIC's margin below which the choice of the bias model is close: one parameter's penalty, ln(ordinates) (the
+// flat B then wins although the GM fits as well or better: on the paper's HG1900 the GM's K is right and the flat
+// B's 7-9 % high, outside its own interval), and at least 6 (Kass & Raftery 1995: below 6, "positive" at most).
+double close_bias_model_bic(long observations);
 
 // Averaging factors for a channel: explicit taus rounded to whole samples (std::invalid_argument
 // when one is below tau0 or beyond the data), or the spacing up to the maximum factor.

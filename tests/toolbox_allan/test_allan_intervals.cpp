@@ -1,0 +1,104 @@
+// Issue 14: what `ldv allan`'s intervals carry beyond the likelihood fit's own Fisher information
+// (analysis.cpp). Against simulated truth, over seeds:
+//  - N's interval carries the uncertainty of the Q the likelihood fit holds at the curve fit's value: where Q
+//    dominates the short taus, N's sigma is the scatter of N over the records and its interval holds the true
+//    N as often as its confidence says;
+//  - K's interval spans both bias models when BIC's choice is close: a Gauss-Markov bias below the rate random
+//    walk (the paper's HG1900) is taken for a flat B, whose K runs high; the spanned interval holds the true K.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "tests/toolbox_allan/sensor_sim.hpp"
+#include "toolbox/allan/analysis.hpp"
+
+using namespace ldv::allan;
+using namespace ldv::allan::test;
+
+namespace {
+
+ChannelResult analyse(std::vector<double> y, double dt) {
+  AnalysisOptions opt;
+  return analyze({phase_from_rates(std::move(y), dt, "gyro_x", "rad/s")}, opt).front();
+}
+
+// The paper's Q: an additive white error of std q on the integrated angle (Allan variance 3 q^2 / tau^2).
+void add_quantisation(std::vector<double>& y, double dt, double q, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> g(0.0, q);
+  double previous = g(rng);
+  for (double& v : y) {
+    const double e = g(rng);
+    v += (e - previous) / dt;
+    previous = e;
+  }
+}
+
+}  // namespace
+
+TEST(AllanIntervals, GivenAQuantisationOverTheWhiteNoise_ThenNsIntervalCarriesTheHeldQ) {
+  SensorTruth t;
+  t.n = 3.5 * M_PI / 180.0 / 60.0;  // the 3DM-GX2 datasheet's ARW
+  const double dt = 0.05, q = 4.0 * t.n * std::sqrt(dt);  // Q's Allan deviation 7x N's at tau0
+  const int seeds = 12;
+  int held_exact = 0, carried = 0;
+  double sum_extra = 0.0, sum_sigma = 0.0, sum_n = 0.0, sum_n2 = 0.0;
+  for (int seed = 1; seed <= seeds; ++seed) {
+    std::vector<double> y = simulate_rate(t, dt, 72000, seed);  // 1 h at 20 Hz
+    add_quantisation(y, dt, q, 1000 + seed);
+    const ChannelResult r = analyse(std::move(y), dt);
+    ASSERT_TRUE(r.fit);
+    ASSERT_EQ(r.fit->method, "whittle") << r.likelihood_error;
+    const TermEstimate& n = (*r.fit)[ModelTerm::kN];
+    // The interval at Q held exact: the extra part taken back out of each half-width.
+    const double z = 1.959963984540054, extra = z * r.n_sigma_from_held_q;
+    const double lo_exact = n.value - std::sqrt(std::max(0.0, std::pow(n.value - n.lo, 2) - extra * extra));
+    const double hi_exact = n.value + std::sqrt(std::max(0.0, std::pow(n.hi - n.value, 2) - extra * extra));
+    held_exact += t.n >= lo_exact && t.n <= hi_exact;
+    carried += t.n >= n.lo && t.n <= n.hi;
+    sum_extra += r.n_sigma_from_held_q / n.sigma;
+    sum_sigma += n.sigma / t.n;
+    sum_n += n.value / t.n;
+    sum_n2 += std::pow(n.value / t.n, 2);
+    std::printf("seed %2d: N/true %.4f, interval [%.4f, %.4f] (Q held exact [%.4f, %.4f]), Q/true %.3f\n", seed,
+                n.value / t.n, n.lo / t.n, n.hi / t.n, lo_exact / t.n, hi_exact / t.n,
+                (*r.fit)[ModelTerm::kQ].value / q);
+  }
+  const double scatter = std::sqrt((sum_n2 - sum_n * sum_n / seeds) / (seeds - 1)), sigma = sum_sigma / seeds;
+  std::printf("N's 95 %% interval holds the truth in %d of %d records (at Q held exact: %d); N's sigma %.4f of the "
+              "truth against its scatter over the records %.4f; Q's share of N's sigma %.2f\n",
+              carried, seeds, held_exact, sigma, scatter, sum_extra / seeds);
+  EXPECT_GT(sum_extra / seeds, 0.15) << "Q should matter to N here";
+  EXPECT_GE(carried, seeds - 2);  // P(>= 3 misses | 95 %, 12) = 2 %
+  // The scatter of 12 records: within [0.6, 1.5] of the true sigma at 95 %.
+  EXPECT_GT(sigma, 0.6 * scatter);
+  EXPECT_LT(sigma, 1.6 * scatter);
+}
+
+TEST(AllanIntervals, GivenAGaussMarkovBiasBelowTheRateRandomWalk_ThenKsIntervalSpansBothBiasModels) {
+  // Like the paper's HG1900 accelerometer Y: K's Allan deviation above the GM's even at the GM's peak.
+  SensorTruth t;
+  t.n = 1e-4;
+  t.gm_t_s = 300.0;
+  t.gm_sigma = 2e-5;
+  t.k = 2.0 * t.gm_sigma / std::sqrt(t.gm_t_s);
+  const int seeds = 8;
+  int spanned = 0, held = 0;
+  for (int seed = 1; seed <= seeds; ++seed) {
+    const ChannelResult r = analyse(simulate_rate(t, 0.02, 360000, 77 + seed), 0.02);  // 2 h at 50 Hz
+    ASSERT_TRUE(r.fit && r.bias_model);
+    const TermEstimate& k = (*r.fit)[ModelTerm::kK];
+    const BiasModelChoice& c = *r.bias_model;
+    const double margin = c.flat.bic - c.gauss_markov.bic;
+    spanned += r.k_interval_spans_both_bias_models;
+    held += t.k >= k.lo && t.k <= k.hi;
+    std::printf("seed %d: %s (dBIC %.1f), K/true %.3f, interval [%.3f, %.3f]%s\n", seed, c.chosen.c_str(), margin,
+                k.value / t.k, k.lo / t.k, k.hi / t.k, r.k_interval_spans_both_bias_models ? " spans both models" : "");
+    EXPECT_EQ(r.k_interval_spans_both_bias_models, std::abs(margin) < close_bias_model_bic(c.observations));
+  }
+  std::printf("K's interval holds the truth in %d of %d records, %d spanning both bias models\n", held, seeds, spanned);
+  EXPECT_GT(spanned, 0) << "the case this test is about";
+  EXPECT_GE(held, seeds - 1);
+}
