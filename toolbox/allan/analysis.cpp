@@ -70,23 +70,6 @@ FitAttempt fit_channel(const PhaseSeries& s, const std::vector<StabilityPoint>& 
   return a;
 }
 
-// Q is held at the curve fit's value in the likelihood fit, and N shares the high frequencies with it: N refitted
-// with Q one sigma either side; half the difference is N's sigma from Q (0 without a Q).
-double n_sigma_from_held_q(const PhaseSeries& s, const NoiseFit& curve, const FitOptions& fo) {
-  const TermEstimate& q = curve[ModelTerm::kQ];
-  if (!q.in_model || !(q.value > 0.0) || !(q.sigma > 0.0)) return 0.0;
-  auto n_at = [&](double q_value) {
-    NoiseFit held = curve;
-    held[ModelTerm::kQ].value = q_value;
-    return whittle_fit(s, held, fo, fo.likelihood_block_s)[ModelTerm::kN].value;
-  };
-  try {
-    return 0.5 * std::abs(n_at(q.value + q.sigma) - n_at(std::max(0.0, q.value - q.sigma)));
-  } catch (const std::invalid_argument&) {
-    return 0.0;  // the fit itself succeeded at Q; the spread is then not known
-  }
-}
-
 // Widens a term's 1-sigma and interval by an independent 1-sigma `extra` (z: the interval's normal quantile).
 void widen(TermEstimate& t, double extra, double z) {
   t.sigma = std::hypot(t.sigma, extra);
@@ -180,7 +163,7 @@ ChannelResult analyze_channel(const PhaseSeries& s, const AnalysisOptions& opt) 
         r.fit = std::move(chosen.refined);
         r.likelihood = chosen.summary;
         const double z = math::normal_quantile(0.5 + 0.5 * fo.interval_confidence);
-        r.n_sigma_from_held_q = n_sigma_from_held_q(s, *r.curve_fit, fo);
+        r.n_sigma_from_held_q = r.likelihood->n_sigma_from_held_q;
         if (r.n_sigma_from_held_q > 0.0) widen((*r.fit)[ModelTerm::kN], r.n_sigma_from_held_q, z);
         TermEstimate& k = (*r.fit)[ModelTerm::kK];
         if (other_model && k.in_model && (*other_model)[ModelTerm::kK].in_model) {

@@ -244,10 +244,14 @@ Solution maximise(Model& mod, const Periodogram& p, const Eigen::VectorXd& start
 
 // Inverse Fisher information of the squared coefficients in `idx` (and ln T last when the
 // Gauss-Markov term is among them with c > 0): sum count g g^T / S^2, g = dS/dparameter.
+// `held`: optionally one more parameter, a held term's squared coefficient (its unit density per bin) under a
+// normal prior of variance held_prior_var, as the last row and column.
 Eigen::MatrixXd fisher_covariance(const Model& mod, const Periodogram& p, const Eigen::VectorXd& c,
-                                  const std::vector<int>& idx, int gm_index) {
+                                  const std::vector<int>& idx, int gm_index, const Eigen::VectorXd* held = nullptr,
+                                  double held_prior_var = 0.0) {
   const bool with_shape = gm_index >= 0 && c(gm_index) > 0 && std::find(idx.begin(), idx.end(), gm_index) != idx.end();
-  const int q = static_cast<int>(idx.size()) + (with_shape ? 1 : 0);
+  const int q = static_cast<int>(idx.size()) + (with_shape ? 1 : 0) + (held ? 1 : 0);
+  const int shape_col = static_cast<int>(idx.size());
   const long nb = static_cast<long>(p.nu.size());
   const Eigen::VectorXd s = model_density(mod, c);
   Eigen::MatrixXd g(nb, q);
@@ -257,16 +261,20 @@ Eigen::MatrixXd fisher_covariance(const Model& mod, const Periodogram& p, const 
     for (long b = 0; b < nb; ++b) {
       const double up = block_difference_density(ModelTerm::kGaussMarkov, p.nu[b], p.tau_b, mod.gm_t_s * std::exp(h));
       const double dn = block_difference_density(ModelTerm::kGaussMarkov, p.nu[b], p.tau_b, mod.gm_t_s * std::exp(-h));
-      g(b, q - 1) = c(gm_index) * (up - dn) / (2.0 * h);
+      g(b, shape_col) = c(gm_index) * (up - dn) / (2.0 * h);
     }
   }
+  if (held) g.col(q - 1) = *held;
   for (long b = 0; b < nb; ++b) g.row(b) *= std::sqrt(p.count[b]) / s(b);
   Eigen::VectorXd scale(q);
   for (int j = 0; j < q; ++j) {
     scale(j) = g.col(j).norm();
     if (scale(j) > 0) g.col(j) /= scale(j);
   }
-  const Eigen::MatrixXd info = g.transpose() * g;
+  Eigen::MatrixXd info = g.transpose() * g;
+  // The prior's information, in the tapered likelihood's scale (its information is divided by the factor below).
+  if (held && held_prior_var > 0 && scale(q - 1) > 0)
+    info(q - 1, q - 1) += p.taper.variance_factor / (held_prior_var * scale(q - 1) * scale(q - 1));
   const Eigen::MatrixXd cov = info.completeOrthogonalDecomposition().pseudoInverse();
   // Tapered ordinates carry less information than the count says (about 12 % more variance here).
   return p.taper.variance_factor * scale.cwiseInverse().asDiagonal() * cov * scale.cwiseInverse().asDiagonal();
@@ -486,6 +494,23 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
     const long last = static_cast<long>(active.size());
     out[ModelTerm::kGaussMarkov].shape_sigma = mod.gm_t_s * std::sqrt(std::max(0.0, cov_active(last, last)));
   }
+  // Q is held at the curve fit's value, and N shares the high frequencies with it: N's variance with c_Q = Q^2
+  // free under the curve fit's uncertainty (sd 2 Q sigma_Q) minus N's variance at Q held, as a sigma of N.
+  double n_sigma_from_held_q = 0.0;
+  const TermEstimate& q_curve = curve[ModelTerm::kQ];
+  const auto n_it = std::find(mod.terms.begin(), mod.terms.end(), ModelTerm::kN);
+  if (q > 0.0 && q_curve.sigma > 0.0 && n_it != mod.terms.end()) {
+    const int j_n = static_cast<int>(n_it - mod.terms.begin());
+    const auto at = std::find(active.begin(), active.end(), j_n);
+    if (at != active.end() && sol.c(j_n) > 0.0) {
+      const Eigen::VectorXd q_unit_density = mod.fixed / (q * q);
+      const double sigma_cq = 2.0 * q * q_curve.sigma;
+      const Eigen::MatrixXd cov_q = fisher_covariance(mod, p, sol.c, active, gm_index, &q_unit_density, sigma_cq * sigma_cq);
+      const long k = at - active.begin();
+      const double extra_var_c = std::max(0.0, cov_q(k, k) - cov_active(k, k));
+      n_sigma_from_held_q = std::sqrt(extra_var_c) / (2.0 * std::sqrt(sol.c(j_n)));  // sd of c -> sd of N
+    }
+  }
   // The ramp from the same data: a constant in d, judged against the noise the fitted terms put
   // into that constant (a random walk mostly), not against a curve that trades R for K.
   if (opt.r) {
@@ -534,6 +559,7 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
     }
   }
   if (summary) {
+    summary->n_sigma_from_held_q = n_sigma_from_held_q;
     summary->block_s = p.tau_b;
     summary->ordinates = p.ordinates;
     summary->log_likelihood = sol.log_likelihood;

@@ -31,6 +31,9 @@ struct WhittleSummary {
   // The taper's variance factor (n sum h^4 / (sum h^2)^2, about 1.12): the tapered log-likelihood is
   // that much sharper than the information it holds, so likelihood ratios are divided by it.
   double taper_variance_factor = 1.0;
+  // N's 1-sigma from the uncertainty of the Q held at the curve fit's value (the Fisher information with Q free
+  // under that uncertainty, less the information at Q held); not in N's own sigma and interval.
+  double n_sigma_from_held_q = 0.0;
 };
 
 // `curve`: the Allan-curve fit of the same series (start values, Q and R, slope lines, misfit).
