@@ -39,6 +39,7 @@ std::string write_report(const ReportInputs& given, const std::string& dir) {
   if (!in.innovations.empty()) add_innovation_section(page, dir, in);
   if (!in.outage_json.empty()) add_outage_section(page, dir, in);
   if (!in.allan_json.empty()) add_allan_section(page, dir, in);
+  if (!in.allan_loop_json.empty()) add_stochastic_loop_section(page, dir, in);
   if (!in.diagnose_json.empty()) add_diagnosis_section(page, dir, in);
   const std::string index = (fs::path(dir) / "index.html").string();
   page.write(index);

@@ -2,6 +2,7 @@
 // `ldv report`: one function per section of the page; each writes its PNGs (gnuplot) into `dir` and
 // appends its plots and tables to the page. Sections whose input is missing are not called.
 #include <string>
+#include <vector>
 
 #include "toolbox/assess/html_page.hpp"
 #include "toolbox/assess/nav_series.hpp"
@@ -18,6 +19,8 @@ struct ReportInputs {
   // ldv smooth's forward solution and separation (default: FILE_forward.nav, FILE_separation.txt when present)
   std::string forward, separation;
   std::string outage_json, allan_json, diagnose_json;
+  // `ldv allan --json` runs of one record with growing term sets, in order: the stochastic model loop
+  std::vector<std::string> allan_loop_json;
   double settle_s = 0.0;
   int max_plot_points = 4000;
 };
@@ -31,6 +34,7 @@ void add_smoothing_section(HtmlPage& page, const std::string& dir, const NavSeri
 void add_innovation_section(HtmlPage& page, const std::string& dir, const ReportInputs& in);
 void add_outage_section(HtmlPage& page, const std::string& dir, const ReportInputs& in);
 void add_allan_section(HtmlPage& page, const std::string& dir, const ReportInputs& in);
+void add_stochastic_loop_section(HtmlPage& page, const std::string& dir, const ReportInputs& in);
 void add_diagnosis_section(HtmlPage& page, const std::string& dir, const ReportInputs& in);
 
 // Writes dir/index.html and its PNGs; returns the path of index.html.

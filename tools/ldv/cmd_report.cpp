@@ -28,6 +28,9 @@ void add_report_command(CLI::App& app) {
                 "with a smoothed --nav: ldv smooth's _separation.txt (default beside it)");
   c->add_option("--outage-json", a->in.outage_json, "ldv outage --json output");
   c->add_option("--allan-json", a->in.allan_json, "ldv allan --json output");
+  c->add_option("--allan-loop-json", a->in.allan_loop_json,
+                "ldv allan --json runs of one record with growing --terms (e.g. QNBK then QNBKR), in order: the "
+                "stochastic model loop (the misfit per decade names the missing term, adding it makes it fall)");
   c->add_option("--diagnose-json", a->in.diagnose_json, "ldv diagnose --json output");
   c->add_option("--settle", a->in.settle_s, "skip the first seconds in error statistics and plots [s]");
   c->add_option("--title", a->in.title, "page title");
