@@ -55,22 +55,33 @@ TEST(ImuLatencyDecision, GivenALagALeverArmCouldExplain_WhenTheFilterFitsBetterW
   EXPECT_LT(std::abs(in.imu_latency_refined.lag_s - 0.147), 3.0 * in.imu_latency_refined.sigma_s);
 }
 
-// A consumer MEMS IMU 240 ms late, 4 Hz RTK: the filter pass with the time_offset state brings the turns'
-// estimate to within 2 ms. Vibrating at 10x its datasheet (seeds 1-6) the pass is biased late by 5-26 ms with
-// a sigma of 4.6 ms, no better than the turns' 10-12 ms sigma says (open, see the closing note of issue 12):
-// so there only that is checked, that it stays within the turns' own 3 sigma of the truth.
+// A consumer MEMS IMU 240 ms late, 4 Hz RTK: the GNSS likelihood over further IMU shifts brings the turns'
+// estimate to within 2 ms. Vibrating at 10x its datasheet (seeds 1-6), the refinement is honest: its errors
+// against the truth, in units of its own sigma, have an RMS below 2. (It used to be a filter pass with the
+// time_offset state, whose Jacobian is the filter's own velocity: under vibration that was biased late by 5-26 ms
+// at a sigma of 4.6 ms, an RMS z of 3.3 over 24 drives.)
 TEST(ImuLatencyDecision, GivenAMemsImuLateBy240ms_ThenTheFilterPassRefinesTheTurnsEstimate) {
-  for (const double vibration : {0.0, 10.0}) {
-    SCOPED_TRACE(vibration);
-    const assess::NavInputs in = load(vibration > 0 ? "mems_vibrating" : "mems", 0.240, {}, "3dm-gx2", 4.0, vibration, 4);
-    ASSERT_TRUE(in.imu_latency_applied) << in.imu_note;
-    ASSERT_TRUE(in.imu_latency_refined.done) << in.imu_note;
-    std::printf("turns %.1f +- %.1f ms, refined %.1f +- %.1f ms, true 240 ms\n", 1e3 * in.imu_latency.lag_s,
-                1e3 * in.imu_latency.sigma_s, 1e3 * in.imu_latency_refined.lag_s, 1e3 * in.imu_latency_refined.sigma_s);
-    EXPECT_LT(in.imu_latency_refined.sigma_s, 0.7 * in.imu_latency.sigma_s);
-    const double allowed_s = vibration > 0 ? 3.0 * in.imu_latency.sigma_s : 3.0 * in.imu_latency_refined.sigma_s;
-    EXPECT_LT(std::abs(in.imu_latency_refined.lag_s - 0.240), allowed_s);
+  const assess::NavInputs in = load("mems", 0.240, {}, "3dm-gx2", 4.0, 0.0, 4);
+  ASSERT_TRUE(in.imu_latency_applied) << in.imu_note;
+  ASSERT_TRUE(in.imu_latency_refined.done) << in.imu_note;
+  EXPECT_LT(in.imu_latency_refined.sigma_s, 0.7 * in.imu_latency.sigma_s);
+  EXPECT_LT(std::abs(in.imu_latency_refined.lag_s - 0.240), 3.0 * in.imu_latency_refined.sigma_s);
+  double sum_z2 = 0.0;
+  int refined = 0;
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    const assess::NavInputs v = load("mems_vibrating", 0.240, {}, "3dm-gx2", 4.0, 10.0, seed);
+    ASSERT_TRUE(v.imu_latency_applied) << v.imu_note;
+    if (!v.imu_latency_refined.done) continue;  // left at the turns' estimate: checked by ImuLatency*
+    const double z = (v.imu_latency_refined.lag_s - 0.240) / v.imu_latency_refined.sigma_s;
+    std::printf("seed %llu: turns %.1f +- %.1f ms, refined %.1f +- %.1f ms (z %.2f), true 240 ms\n",
+                static_cast<unsigned long long>(seed), 1e3 * v.imu_latency.lag_s, 1e3 * v.imu_latency.sigma_s,
+                1e3 * v.imu_latency_refined.lag_s, 1e3 * v.imu_latency_refined.sigma_s, z);
+    EXPECT_LT(std::abs(z), 4.0) << "seed " << seed;
+    sum_z2 += z * z;
+    ++refined;
   }
+  ASSERT_GE(refined, 4);
+  EXPECT_LT(std::sqrt(sum_z2 / refined), 2.0);
 }
 
 TEST(ImuLatencyDecision, GivenAForwardLeverArmAndNoLag_ThenNoLagIsTakenOut) {
