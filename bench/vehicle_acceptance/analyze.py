@@ -22,9 +22,9 @@ m = re.search(r"IMU (?:stamps late by|latency) ([-\d.]+) \+- ([\d.]+) ms([^)]*\)
 res["lat_applied"] = bool(re.search(r"found from the turns, taken out|a lag, taken out", err))
 res["lat_found_ms"] = float(m.group(1)) if m else None
 res["lat_sig_ms"] = float(m.group(2)) if m else None
-r = re.search(r"refined by a filter pass with the time_offset state to ([-\d.]+) \+- ([\d.]+) ms", err)
+r = re.search(r"refined by the GNSS likelihood over IMU shifts \(\d+ filter passes\) to ([-\d.]+) \+- ([\d.]+) ms", err)
 res["lat_refined"] = bool(r)
-if r:  # the latency the run used: the turns' estimate refined by the time_offset pass
+if r:  # the latency the run used: the turns' estimate refined by the GNSS likelihood over IMU shifts
     res["lat_turns_ms"] = [res["lat_found_ms"], res["lat_sig_ms"]]
     res["lat_found_ms"], res["lat_sig_ms"] = float(r.group(1)), float(r.group(2))
 res["lat_text"] = (m.group(0) if m else (re.search(r"IMU stamps[^;)]*", err).group(0) if re.search(r"IMU stamps[^;)]*", err) else ""))
