@@ -1,11 +1,92 @@
 // The built-in scenarios, written in the same YAML a user writes (`ldv sim --print-scenario NAME`
 // prints one to start from). Start: near Geodetics Inc., San Diego, 100 m above the ellipsoid.
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
 #include <map>
 
 #include "sim/scenario.hpp"
 
 namespace ldv::sim {
 namespace {
+// The multi-position calibration session (`multiposition`, `multiposition:N`, `multiposition:N:POSE_S`): a body
+// standing on a calibration table, turned between static poses as `ldv calib static` needs them: the six
+// axis-up/down poses, the eight cube corners (every pair of axes tilted against gravity: the non-orthogonality),
+// four cube edges; each rotation tilts gravity by 48 deg or more (the gyro rotation method's conditions) about a
+// different axis. Every pose is 2 to 5 deg off its nominal one, as a hand-placed table is, and so that no two of
+// the gravity direction's components have the same magnitude (at an exact cube pose they do, and the tangent
+// basis of ldv calib static's rotation condition then switches axes with the noise: bench/paper_tables/
+// table2_notes.md). Yaws chosen so that the 18 attitude matrices sum to nearly zero (|sum C_b_n| = 1.15 of 18):
+// the mean static gyro reading, which the rotation method reports as the bias, holds < 0.064 of Earth rate.
+// Poses 19..36 repeat 1..18 turned by 180 deg in heading.
+struct TablePose {
+  double roll_deg, pitch_deg, yaw_deg;
+  const char* down;  // the body axis / direction that points down (nominally)
+};
+constexpr TablePose kTablePoses[18] = {
+    {2, -3, 0, "z down (level)"},           {87, 2, 180, "y down"},
+    {183, -2, 180, "z up"},                 {133, 38, 180, "corner -x+y-z down"},
+    {138, -37, 90, "corner +x+y-z down"},   {140, -86, -90, "x down"},
+    {42, -33, 180, "corner +x+y+z down"},   {47, 32, 0, "corner -x+y+z down"},
+    {40, 86, -90, "x up"},                  {-47, 37, 180, "corner -x-y+z down"},
+    {-42, -37, 0, "corner +x-y+z down"},    {-92, 3, 180, "y up"},
+    {-133, -38, -90, "corner +x-y-z down"}, {-138, 37, 0, "corner -x-y-z down"},
+    {-177, -42, 0, "edge +x-z down"},       {-92, 43, 0, "edge -x-y down"},
+    {2, 48, 180, "edge -x+z down"},         {42, 2, 0, "edge +y+z down"},
+};
+constexpr double kFirstPoseS = 30.0;  // the detector's default initial static period (imu_tk)
+constexpr double kRotationS = 3.0;  // body rates up to 132 deg/s (HG1700: +-1000 deg/s)
+
+std::string number(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.15g", v);
+  return b;
+}
+
+std::string multiposition_yaml(const std::string& name, int poses, double pose_s) {
+  const double first_s = std::max(kFirstPoseS, pose_s);
+  const double total_s = first_s + (poses - 1) * (kRotationS + pose_s);
+  std::string y = "name: \"" + name + "\"\n";
+  y += "description: \"multi-position static calibration (ldv calib static): " + std::to_string(poses) +
+       " static poses on a table (axis up/down, cube corners and edges, 2-5 deg off), the first " +
+       number(first_s) + " s, the others " + number(pose_s) + " s, " + number(kRotationS) +
+       " s rotations tilting gravity by 48 deg or more; " + number(total_s) + " s in all\"\n";
+  const TablePose& p0 = kTablePoses[0];
+  y += "start: {lat_deg: 32.8801, lon_deg: -117.2340, h_m: 100, yaw_deg: " + number(p0.yaw_deg) +
+       ", pitch_deg: " + number(p0.pitch_deg) + ", roll_deg: " + number(p0.roll_deg) + "}\n";
+  y += "segments:\n";
+  for (int k = 0; k < poses; ++k) {
+    const TablePose& p = kTablePoses[k % 18];
+    double yaw = p.yaw_deg;
+    if (k >= 18) yaw = yaw > 0 ? yaw - 180 : yaw + 180;
+    if (k > 0)
+      y += "  - {type: pose, roll_deg: " + number(p.roll_deg) + ", pitch_deg: " + number(p.pitch_deg) +
+           ", yaw_deg: " + number(yaw) + ", duration_s: " + number(kRotationS) + "}\n";
+    y += "  - {type: static, duration_s: " + number(k == 0 ? first_s : pose_s) + "}   # pose " + std::to_string(k + 1) +
+         ": " + p.down + "\n";
+  }
+  return y;
+}
+
+// "multiposition", "multiposition:N", "multiposition:N:POSE_S" -> the YAML; "" when not such a name.
+std::string multiposition_from_name(const std::string& name) {
+  const std::string base = "multiposition";
+  if (name.compare(0, base.size(), base) != 0) return "";
+  if (name.size() == base.size()) return multiposition_yaml(name, 18, 10.0);
+  if (name[base.size()] != ':') return "";
+  const std::string rest = name.substr(base.size() + 1);
+  const size_t colon = rest.find(':');
+  auto parse = [](const std::string& text, double& v) {
+    const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    return !text.empty() && ec == std::errc() && ptr == text.data() + text.size() && std::isfinite(v);
+  };
+  double n = 0, pose_s = 10.0;
+  if (!parse(rest.substr(0, colon), n) || n != std::floor(n) || n < 1 || n > 36) return "";
+  if (colon != std::string::npos && (!parse(rest.substr(colon + 1), pose_s) || pose_s < 1 || pose_s > 3600)) return "";
+  return multiposition_yaml(name, static_cast<int>(n), pose_s);
+}
+
 const std::map<std::string, std::string>& builtins() {
   static const std::map<std::string, std::string> m = {
       {"static", R"(name: static
@@ -187,12 +268,13 @@ std::vector<std::string> builtin_scenario_names() {
   std::vector<std::string> names;
   for (const auto& [name, text] : builtins()) names.push_back(name);
   names.push_back("mixed");
+  names.push_back("multiposition");
   return names;
 }
 
 std::string builtin_scenario_yaml(const std::string& name) {
   const auto it = builtins().find(name == "mixed" ? "drive" : name);
-  return it == builtins().end() ? std::string() : it->second;
+  return it == builtins().end() ? multiposition_from_name(name) : it->second;
 }
 
 }  // namespace ldv::sim

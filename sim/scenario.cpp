@@ -97,7 +97,7 @@ Segment parse_segment(const YAML::Node& node, const std::string& file, const std
   s.line = line_of(node);
   Fields f0(node, file, where0 + ": ");
   s.type = f0.text("type", "");
-  if (s.type.empty()) f0.fail("type", "one of static straight accelerate stop turn uturn circle figure8 hill pitch roll");
+  if (s.type.empty()) f0.fail("type", "one of static straight accelerate stop turn uturn circle figure8 hill pitch roll pose");
   Fields f(node, file, where0 + " (" + s.type + "): ");
   const double kDeg = kDegToRad;
   auto duration = [&] { s.duration_s = f.positive("duration_s", "[s]"); };
@@ -152,8 +152,17 @@ Segment parse_segment(const YAML::Node& node, const std::string& file, const std
     if (!f.has("to_deg")) f.fail("to_deg", "the target angle [deg]");
     s.angle_to_rad = f.in_range("to_deg", 0.0, -80.0, 80.0, "[deg]") * kDeg;
     allowed.insert("to_deg");
+  } else if (s.type == "pose") {
+    // A standing body turned to an attitude (a calibration table, a hand): the Euler angles ramp together.
+    duration();
+    if (f.has("roll_deg")) s.pose_roll_rad = f.in_range("roll_deg", 0.0, -360.0, 360.0, "[deg]") * kDeg;
+    if (f.has("pitch_deg")) s.pose_pitch_rad = f.in_range("pitch_deg", 0.0, -90.0, 90.0, "[deg]") * kDeg;
+    if (f.has("yaw_deg")) s.pose_yaw_rad = f.in_range("yaw_deg", 0.0, -360.0, 360.0, "[deg]") * kDeg;
+    if (!s.pose_roll_rad && !s.pose_pitch_rad && !s.pose_yaw_rad)
+      f.fail("roll_deg", "at least one of roll_deg, pitch_deg, yaw_deg (the attitude to turn to)");
+    allowed.insert({"roll_deg", "pitch_deg", "yaw_deg"});
   } else {
-    f0.fail("type", "one of static straight accelerate stop turn uturn circle figure8 hill pitch roll, found '" +
+    f0.fail("type", "one of static straight accelerate stop turn uturn circle figure8 hill pitch roll pose, found '" +
                         s.type + "'");
   }
   f.reject_unknown(allowed);
@@ -295,6 +304,19 @@ struct Compiler {
       t += s.duration_s;
     } else if (s.type == "roll") {
       m.roll_rad.ramp_to(t, s.duration_s, s.angle_to_rad);
+      t += s.duration_s;
+    } else if (s.type == "pose") {
+      if (std::abs(speed) > 1e-9)
+        fail(s, "the vehicle moves at " + std::to_string(speed) + " m/s here; a pose is turned standing ('stop' first)");
+      if (s.pose_roll_rad) m.roll_rad.ramp_to(t, s.duration_s, *s.pose_roll_rad);
+      if (s.pose_pitch_rad) m.pitch_rad.ramp_to(t, s.duration_s, *s.pose_pitch_rad);
+      if (s.pose_yaw_rad) {
+        // The heading now (closed form), and the change to the target the shorter way round, in (-180, 180] deg.
+        const double yaw_now = m.start.yaw_rad + m.yaw_rate_rad_s.at(t).integral;
+        double change = std::remainder(*s.pose_yaw_rad - yaw_now, 2.0 * kPi);
+        if (change <= -kPi + 1e-9) change += 2.0 * kPi;  // a half turn is +180 deg, whatever the rounding
+        if (change != 0.0) bump(m.yaw_rate_rad_s, t, s.duration_s, 2.0 * change / s.duration_s);
+      }
       t += s.duration_s;
     }
   }

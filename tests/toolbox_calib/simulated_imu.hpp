@@ -24,6 +24,7 @@ struct SimulatedLogSpec {
   int poses = 24;
   double pose_s = 5.0;
   double motion_s = 2.0;
+  std::vector<Mat3> orientations;  // C_b_n of the poses in order (then `poses` is their count); empty: random
 };
 
 struct SimulatedLog {
@@ -54,15 +55,17 @@ inline SimulatedLog simulate_log(const SimulatedSensor& s, const SimulatedLogSpe
     log.f_mps2.push_back(Ma * f_b + s.truth.accel.bias + s.accel_noise_mps2 * nf);
     log.w_rad_s.push_back(Mg * w_b + s.truth.gyro.bias + s.gyro_noise_rad_s * nw);
   };
-  Mat3 C = random_rotation(rng);
-  for (int k = 0; k < spec.poses; ++k) {
+  const int poses = spec.orientations.empty() ? spec.poses : static_cast<int>(spec.orientations.size());
+  auto orientation = [&](int k) { return spec.orientations.empty() ? random_rotation(rng) : spec.orientations[k]; };
+  Mat3 C = orientation(0);
+  for (int k = 0; k < poses; ++k) {
     const double duration = k == 0 ? spec.init_static_s : spec.pose_s;
     const size_t begin = log.t_s.size();
     for (int i = 0; i < static_cast<int>(std::lround(duration / spec.dt_s)); ++i) emit(C, Vec3::Zero());
     out.pose_samples.emplace_back(begin, log.t_s.size());
-    if (k + 1 == spec.poses) break;
-    // Rotate at constant body rate to the next random orientation: C(t) = C Exp(phi t / T).
-    const Mat3 C_next = random_rotation(rng);
+    if (k + 1 == poses) break;
+    // Rotate at constant body rate to the next orientation: C(t) = C Exp(phi t / T).
+    const Mat3 C_next = orientation(k + 1);
     const Vec3 phi = rotvec_from_quat(Quat(C.transpose() * C_next));
     const int steps = static_cast<int>(std::lround(spec.motion_s / spec.dt_s));
     for (int i = 1; i <= steps; ++i) {

@@ -49,6 +49,7 @@ class GyroRotationModel : public ConditionModel {
   const std::vector<Pose>& poses_;
   TriadCalibration accel_;
   std::vector<size_t> transitions_, clipped_transitions_;
+  std::vector<int> basis_axis_;  // per transition: the body axis its misclosure's tangent basis is built from
 };
 
 }  // namespace ldv::calib
