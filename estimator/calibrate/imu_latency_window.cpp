@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
+#include <system_error>
 
 namespace ldv::est {
 namespace {
@@ -9,16 +11,17 @@ namespace {
 constexpr double kKeptBeyondWindow_s = 10.0;
 }  // namespace
 
-ImuLatencyWindow::~ImuLatencyWindow() {
-  if (pending_ && pending_->estimate.valid()) pending_->estimate.wait();  // the worker reads nothing of ours
-}
-
 void ImuLatencyWindow::add_imu(const ImuIncrement& raw) {
   if (!std::isfinite(raw.t_s) || (!imu_.empty() && raw.t_s <= imu_.back().t_s)) return;
   imu_.push_back(raw);
   while (imu_.front().t_s < raw.t_s - o_.window_s - kKeptBeyondWindow_s) imu_.pop_front();
   if (pending_ && raw.t_s >= pending_->window_end_s + kApplyAfter_s) {
-    const ImuLatencyEstimate e = pending_->estimate.get();  // waits only if the worker is slower than 2 s of data
+    ImuLatencyEstimate e;  // invalid unless the search returns
+    try {
+      e = pending_->estimate.get();  // waits only if the worker is slower than 2 s of data
+    } catch (const std::exception&) {
+      // A search that failed (out of memory) decides nothing; a service never stops for it.
+    }
     const double window_end_s = pending_->window_end_s;
     pending_.reset();
     decide(e, window_end_s, raw.t_s);
@@ -48,10 +51,14 @@ void ImuLatencyWindow::start_search(double window_end_s) {
   std::vector<GnssFix> gnss;
   for (const GnssFix& f : gnss_)
     if (f.t_s >= window_end_s - o_.window_s && f.t_s <= window_end_s) gnss.push_back(f);
-  const ImuLatencyOptions search = o_.search;
-  pending_ = Pending{window_end_s, std::async(std::launch::async, [imu = std::move(imu), gnss = std::move(gnss), search] {
-                       return estimate_imu_latency(imu, gnss, search);
-                     })};
+  auto task = [imu = std::move(imu), gnss = std::move(gnss), search = o_.search] {
+    return estimate_imu_latency(imu, gnss, search);
+  };
+  try {
+    pending_ = Pending{window_end_s, std::async(std::launch::async, task)};
+  } catch (const std::system_error&) {  // no thread to be had (a process at its limit): run it when it is due
+    pending_ = Pending{window_end_s, std::async(std::launch::deferred, task)};
+  }
 }
 
 void ImuLatencyWindow::decide(const ImuLatencyEstimate& e, double window_end_s, double imu_t_s) {

@@ -42,10 +42,8 @@ class ImuLatencyWindow {
  public:
   static constexpr double kApplyAfter_s = 2.0;
 
+  // A search still running at destruction is waited for by its future (it works on copies of the data).
   explicit ImuLatencyWindow(ImuLatencyWindowOptions options = {}) : o_(options) {}
-  ~ImuLatencyWindow();
-  ImuLatencyWindow(const ImuLatencyWindow&) = delete;
-  ImuLatencyWindow& operator=(const ImuLatencyWindow&) = delete;
 
   // A sample on its raw stamp, before the lag is taken out of it: lag_s() is then the one for this sample.
   void add_imu(const ImuIncrement& raw);

@@ -52,11 +52,13 @@ void NavSession::add_imu(const ImuIncrement& raw, int week, double arrival_s) {
   if (latency_window_) {
     latency_window_->add_imu(raw);
     imu.t_s -= latency_window_->lag_s();
-    if (imu.t_s <= latest_retimed_imu_t_s_) {
-      ++imu_dropped_retimed_;
-      return;
+    if (std::isfinite(imu.t_s)) {  // a non-finite stamp is the filter's to reject, not a re-timing's
+      if (imu.t_s <= latest_retimed_imu_t_s_) {
+        ++imu_dropped_retimed_;
+        return;
+      }
+      latest_retimed_imu_t_s_ = imu.t_s;
     }
-    latest_retimed_imu_t_s_ = imu.t_s;
   }
   latest_imu_seen_t_s_ = std::max(latest_imu_seen_t_s_, imu.t_s);
   latest_imu_arrival_s_ = arrival_s;
