@@ -31,8 +31,7 @@ void ImuLatencyWindow::add_imu(const ImuIncrement& raw) {
 void ImuLatencyWindow::add_gnss(const GnssFix& fix) {
   if (!std::isfinite(fix.t_s)) return;
   // In time order (a live stream can deliver a late solution after a newer one); a repeated epoch once.
-  auto at = std::lower_bound(gnss_.begin(), gnss_.end(), fix.t_s,
-                             [](const GnssFix& f, double t) { return f.t_s < t; });
+  auto at = std::lower_bound(gnss_.begin(), gnss_.end(), fix.t_s, [](const GnssFix& f, double t) { return f.t_s < t; });
   if (at != gnss_.end() && at->t_s == fix.t_s) return;
   gnss_.insert(at, fix);
   while (gnss_.front().t_s < gnss_.back().t_s - o_.window_s - kKeptBeyondWindow_s) gnss_.pop_front();
@@ -69,8 +68,8 @@ void ImuLatencyWindow::decide(const ImuLatencyEstimate& e, double window_end_s, 
   const double change_s = std::abs(target_s - lag_s_);
   // A lag found at the first few turns (sigma near 20 ms) is refined as more turns come in: taken again
   // when known twice as well as the one in use.
-  const bool refined = e.significant() && !decisions_.empty() && e.sigma_s < 0.5 * decisions_.back().sigma_s &&
-                       change_s > 0.001;
+  const bool refined =
+      e.significant() && !decisions_.empty() && e.sigma_s < 0.5 * decisions_.back().sigma_s && change_s > 0.001;
   if (change_s <= std::max(3.0 * e.sigma_s, 0.005) && !refined) return;
   lag_s_ = target_s;
   decisions_.push_back({window_end_s, imu_t_s, lag_s_, e.sigma_s, e.turning_intervals});

@@ -86,11 +86,12 @@ TEST(ImuLatencyWindow, GivenAnImu240msLate_WhenNavigatingLive_ThenTheLagIsFoundA
     const LiveRun live = run_live(late, true, 0.0);
     ASSERT_FALSE(live.decisions.empty()) << grade << ": no lag found";
     const ImuLatencyDecision& first = live.decisions.front();
-    std::printf("%s: lag %.1f +- %.1f ms decided at %.0f s into the drive (%d turning intervals); %zu decision(s), "
-                "the last %.1f +- %.1f ms; %ld samples dropped by the re-timing\n",
-                grade, 1e3 * first.lag_s, 1e3 * first.sigma_s, first.from_imu_t_s - late.truth.front().t_s,
-                first.turning_intervals, live.decisions.size(), 1e3 * live.decisions.back().lag_s,
-                1e3 * live.decisions.back().sigma_s, live.dropped_retimed);
+    std::printf(
+        "%s: lag %.1f +- %.1f ms decided at %.0f s into the drive (%d turning intervals); %zu decision(s), "
+        "the last %.1f +- %.1f ms; %ld samples dropped by the re-timing\n",
+        grade, 1e3 * first.lag_s, 1e3 * first.sigma_s, first.from_imu_t_s - late.truth.front().t_s,
+        first.turning_intervals, live.decisions.size(), 1e3 * live.decisions.back().lag_s,
+        1e3 * live.decisions.back().sigma_s, live.dropped_retimed);
     EXPECT_LT(std::abs(first.lag_s - lag_s), 3.0 * first.sigma_s) << grade;
     EXPECT_LT(std::abs(live.decisions.back().lag_s - lag_s), 3.0 * live.decisions.back().sigma_s) << grade;
     EXPECT_LT(first.from_imu_t_s - late.truth.front().t_s, 200.0) << grade << ": found late";
@@ -126,7 +127,8 @@ TEST(ImuLatencyWindow, GivenAnImuOnTime_WhenNavigatingLive_ThenNoLagIsTakenOut) 
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
     const LiveRun live = run_live(drive("3dm-gx2", 0.0, seed), true, 0.0);
     for (const ImuLatencyDecision& d : live.decisions)
-      ADD_FAILURE() << "seed " << seed << ": a lag of " << 1e3 * d.lag_s << " +- " << 1e3 * d.sigma_s << " ms taken out";
+      ADD_FAILURE() << "seed " << seed << ": a lag of " << 1e3 * d.lag_s << " +- " << 1e3 * d.sigma_s
+                    << " ms taken out";
     EXPECT_EQ(live.dropped_retimed, 0);
   }
 }

@@ -6,10 +6,9 @@
 // integrated, turn pose k into pose k+1.
 #include <gtest/gtest.h>
 
+#include <GeographicLib/NormalGravity.hpp>
 #include <algorithm>
 #include <cmath>
-
-#include <GeographicLib/NormalGravity.hpp>
 
 #include "sim/scenario.hpp"
 #include "sim_test_helpers.hpp"
@@ -39,29 +38,27 @@ struct Spec {
 };
 const double kS3 = 1.0 / std::sqrt(3.0), kS2 = 1.0 / std::sqrt(2.0);
 const Spec kSpec[kPoses] = {
-    {2, -3, 0, {0, 0, 1}},                    // z down (level)
-    {87, 2, 180, {0, 1, 0}},                  // y down
-    {183, -2, 180, {0, 0, -1}},               // z up
-    {133, 38, 180, {-kS3, kS3, -kS3}},        // corners ...
+    {2, -3, 0, {0, 0, 1}},              // z down (level)
+    {87, 2, 180, {0, 1, 0}},            // y down
+    {183, -2, 180, {0, 0, -1}},         // z up
+    {133, 38, 180, {-kS3, kS3, -kS3}},  // corners ...
     {138, -37, 90, {kS3, kS3, -kS3}},
-    {140, -86, -90, {1, 0, 0}},               // x down
+    {140, -86, -90, {1, 0, 0}},  // x down
     {42, -33, 180, {kS3, kS3, kS3}},
     {47, 32, 0, {-kS3, kS3, kS3}},
-    {40, 86, -90, {-1, 0, 0}},                // x up
+    {40, 86, -90, {-1, 0, 0}},  // x up
     {-47, 37, 180, {-kS3, -kS3, kS3}},
     {-42, -37, 0, {kS3, -kS3, kS3}},
-    {-92, 3, 180, {0, -1, 0}},                // y up
+    {-92, 3, 180, {0, -1, 0}},  // y up
     {-133, -38, -90, {kS3, -kS3, -kS3}},
     {-138, 37, 0, {-kS3, -kS3, -kS3}},
-    {-177, -42, 0, {kS2, 0, -kS2}},           // edges ...
+    {-177, -42, 0, {kS2, 0, -kS2}},  // edges ...
     {-92, 43, 0, {-kS2, -kS2, 0}},
     {2, 48, 180, {-kS2, 0, kS2}},
     {42, 2, 0, {0, kS2, kS2}},
 };
 
-Mat3 spec_C_b_n(int k) {
-  return C_b_n_from_euler(Vec3(kSpec[k].roll, kSpec[k].pitch, kSpec[k].yaw) * kDegToRad);
-}
+Mat3 spec_C_b_n(int k) { return C_b_n_from_euler(Vec3(kSpec[k].roll, kSpec[k].pitch, kSpec[k].yaw) * kDegToRad); }
 // Pose k (0-based) stands still over [begin, end) seconds from the run start.
 double pose_begin_s(int k) { return k == 0 ? 0.0 : kFirstS + k * kTurnS + (k - 1) * kPoseS; }
 double pose_end_s(int k) { return k == 0 ? kFirstS : pose_begin_s(k) + kPoseS; }
@@ -124,7 +121,7 @@ TEST_F(MultipositionScenario, EveryPoseStandsStillAndSensesGravityAlongItsNamedA
     Vec3 f_sum = Vec3::Zero();
     for (size_t i = sample(pose_begin_s(k)); i < sample(pose_end_s(k)); ++i) {
       const ImuIncrement& s = r.imu[i];
-      ASSERT_LT((s.dvel_b_mps - (-C.transpose() * g_n * s.dt_s)).norm(), 1e-12) << "pose " << k + 1;  // of 0.098 m/s
+      ASSERT_LT((s.dvel_b_mps - (-C.transpose() * g_n * s.dt_s)).norm(), 1e-12) << "pose " << k + 1;    // of 0.098 m/s
       ASSERT_LT((s.dtheta_b_rad - C.transpose() * w_ie_n * s.dt_s).norm(), 1e-17) << "pose " << k + 1;  // of 7e-7 rad
       f_sum += s.dvel_b_mps;
     }

@@ -40,7 +40,7 @@ void add_quantisation(std::vector<double>& y, double dt, double q, unsigned seed
 
 TEST(AllanIntervals, GivenAQuantisationOverTheWhiteNoise_ThenNsIntervalCarriesTheHeldQ) {
   SensorTruth t;
-  t.n = 3.5 * M_PI / 180.0 / 60.0;  // the 3DM-GX2 datasheet's ARW
+  t.n = 3.5 * M_PI / 180.0 / 60.0;                        // the 3DM-GX2 datasheet's ARW
   const double dt = 0.05, q = 4.0 * t.n * std::sqrt(dt);  // Q's Allan deviation 7x N's at tau0
   const int seeds = 12;
   int held_exact = 0, carried = 0;
@@ -67,9 +67,10 @@ TEST(AllanIntervals, GivenAQuantisationOverTheWhiteNoise_ThenNsIntervalCarriesTh
                 (*r.fit)[ModelTerm::kQ].value / q);
   }
   const double scatter = std::sqrt((sum_n2 - sum_n * sum_n / seeds) / (seeds - 1)), sigma = sum_sigma / seeds;
-  std::printf("N's 95 %% interval holds the truth in %d of %d records (at Q held exact: %d); N's sigma %.4f of the "
-              "truth against its scatter over the records %.4f; Q's share of N's sigma %.2f\n",
-              carried, seeds, held_exact, sigma, scatter, sum_extra / seeds);
+  std::printf(
+      "N's 95 %% interval holds the truth in %d of %d records (at Q held exact: %d); N's sigma %.4f of the "
+      "truth against its scatter over the records %.4f; Q's share of N's sigma %.2f\n",
+      carried, seeds, held_exact, sigma, scatter, sum_extra / seeds);
   EXPECT_GT(sum_extra / seeds, 0.15) << "Q should matter to N here";
   EXPECT_GE(carried, seeds - 2);  // P(>= 3 misses | 95 %, 12) = 2 %
   // The scatter of 12 records: within [0.6, 1.5] of the true sigma at 95 %.

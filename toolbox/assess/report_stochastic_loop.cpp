@@ -91,7 +91,8 @@ void add_stochastic_loop_section(HtmlPage& page, const std::string& dir, const R
     const std::vector<Step>& steps = channels[ch];
     if (steps.empty() || steps.front().decades.empty()) continue;
     GnuplotFigure fig(dir, "stochastic_loop_" + std::to_string(ch), 760, 420);
-    fig.add("set logscale xy\nset format x '10^{%L}'\nset xlabel 'tau (decade centre) [s]'\nset ylabel 'chi2 per point'");
+    fig.add(
+        "set logscale xy\nset format x '10^{%L}'\nset xlabel 'tau (decade centre) [s]'\nset ylabel 'chi2 per point'");
     fig.add("set title " + plot::gnuplot_label(channel_names[ch]) + "\nset key top left");
     std::string plot = "plot 1 with lines dt 2 lc rgb '#888888' title 'model fits (1)'";
     for (size_t k = 0; k < steps.size(); ++k) {
@@ -108,7 +109,8 @@ void add_stochastic_loop_section(HtmlPage& page, const std::string& dir, const R
     }
     fig.add(plot);
     HtmlTable t{channel_names[ch] + ": chi2 per point per decade, step by step", {"tau [s]"}, {}};
-    for (size_t k = 0; k < steps.size(); ++k) t.header.push_back("step " + std::to_string(k + 1) + " (" + steps[k].terms + ")");
+    for (size_t k = 0; k < steps.size(); ++k)
+      t.header.push_back("step " + std::to_string(k + 1) + " (" + steps[k].terms + ")");
     for (size_t i = 0; i < steps.front().decades.size(); ++i) {
       const Decade& d0 = steps.front().decades[i];
       std::vector<std::string> row{fixed(d0.tau_lo_s, 3) + " .. " + fixed(d0.tau_hi_s, 3)};
@@ -128,19 +130,20 @@ void add_stochastic_loop_section(HtmlPage& page, const std::string& dir, const R
     for (size_t k = 0; k + 1 < steps.size(); ++k) {
       const auto [term, decades] = named_term(steps[k]);
       if (term.empty()) continue;
-      const bool added = steps[k + 1].terms.find(term) != std::string::npos && steps[k].terms.find(term) == std::string::npos;
+      const bool added =
+          steps[k + 1].terms.find(term) != std::string::npos && steps[k].terms.find(term) == std::string::npos;
       double before = 0, after = 0;
       for (size_t i = 0; i < steps[k].decades.size() && i < steps[k + 1].decades.size(); ++i) {
         if (!misfit_named(steps[k].decades[i]) || steps[k].decades[i].closing_term != term) continue;
         before = std::max(before, steps[k].decades[i].chi2_per_point);
         after = std::max(after, steps[k + 1].decades[i].chi2_per_point);
       }
-      page.paragraph(channel_names[ch] + ": step " + std::to_string(k + 1) + " does not fit " + std::to_string(decades) +
-                     " decade(s) (chi2 per point above " + fixed(kMisfitChi2PerPoint, 0) + ") and names " + term +
-                     " there; " +
-                     (added ? "step " + std::to_string(k + 2) + " adds it: the largest chi2 per point there falls from " +
-                                  fixed(before, 3) + " to " + fixed(after, 3) + "."
-                            : "step " + std::to_string(k + 2) + " does not add it."));
+      page.paragraph(
+          channel_names[ch] + ": step " + std::to_string(k + 1) + " does not fit " + std::to_string(decades) +
+          " decade(s) (chi2 per point above " + fixed(kMisfitChi2PerPoint, 0) + ") and names " + term + " there; " +
+          (added ? "step " + std::to_string(k + 2) + " adds it: the largest chi2 per point there falls from " +
+                       fixed(before, 3) + " to " + fixed(after, 3) + "."
+                 : "step " + std::to_string(k + 2) + " does not add it."));
     }
   }
 }
