@@ -21,8 +21,15 @@ double median3(Vec3 v) {
 // a rho g_j (g = 4 sin^2(pi f dt), rising as f^2). For the right rho the powers divided by (1 + rho g_j) are
 // white: their median is the same over the lower and the upper half of the band. rho by bisection on that
 // balance (the lower half's median over the upper's grows with rho), a = the median of the divided powers over
-// ln 2. Medians, not means or a likelihood: an engine's harmonics put their power into a few bins.
-double white_part(const std::vector<double>& p, const std::vector<double>& g) {
+// ln 2. Medians, not means or a likelihood: an engine's harmonics put their power into a few bins. A flat
+// spectrum (the upper half's median within `rising` of the lower half's) or too few bins to tell: every bin
+// counts as white (rho 0: a second part fitted to a flat spectrum only adds scatter).
+double white_part(const std::vector<double>& p, const std::vector<double>& g, double rising) {
+  std::vector<double> divided(p.size());
+  const auto white_at = [&](double rho) {
+    for (size_t j = 0; j < p.size(); ++j) divided[j] = p[j] / (1.0 + rho * g[j]);
+    return median_in_place(divided) / std::log(2.0);
+  };
   const size_t half = p.size() / 2;
   std::vector<double> low(half), high(p.size() - half);
   auto imbalance = [&](double rho) {  // ln(median of the upper half / median of the lower half), divided
@@ -30,16 +37,14 @@ double white_part(const std::vector<double>& p, const std::vector<double>& g) {
     for (size_t j = half; j < p.size(); ++j) high[j - half] = p[j] / (1.0 + rho * g[j]);
     return std::log(median_in_place(high) / median_in_place(low));
   };
+  if (p.size() < 32 || !(imbalance(0.0) > std::log(rising))) return white_at(0.0);
   double lo = 1e-3 / g.back(), hi = 1e12 / std::max(g.front(), 1e-300);  // rho from negligible to all-Q
   if (imbalance(hi) >= 0.0) lo = hi;                                    // rising faster than f^2: all Q
   for (int k = 0; k < 80 && hi / lo > 1.0001; ++k) {
     const double mid = std::sqrt(lo * hi);
     (imbalance(mid) > 0.0 ? lo : hi) = mid;
   }
-  const double rho = std::sqrt(lo * hi);
-  std::vector<double> divided(p.size());
-  for (size_t j = 0; j < p.size(); ++j) divided[j] = p[j] / (1.0 + rho * g[j]);
-  return median_in_place(divided) / std::log(2.0);
+  return white_at(std::sqrt(lo * hi));
 }
 
 // The white-noise density N^2 [unit^2 s] of a rate series (dt apart), from its periodogram's bins from
@@ -91,12 +96,7 @@ double white_psd(const std::vector<double>& r, double dt) {
     p[j] = bins[j].second;
     g[j] = 4.0 * std::pow(std::sin(M_PI * bins[j].first * dt), 2);
   }
-  std::vector<double> scratch = p;
-  const double all_bins = median_in_place(scratch) / std::log(2.0);
-  if (p.size() < 32) return all_bins;
-  std::vector<double> low(p.begin(), p.begin() + p.size() / 2), high(p.begin() + p.size() / 2, p.end());
-  if (!(median_in_place(high) > kRising * median_in_place(low))) return all_bins;
-  return white_part(p, g);
+  return white_part(p, g, kRising);
 }
 
 }  // namespace

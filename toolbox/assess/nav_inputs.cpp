@@ -14,6 +14,7 @@
 #include "common/formats/rtklib_solution.hpp"
 #include "common/formats/tagged_imu_csv.hpp"
 #include "common/io/input_error.hpp"
+#include "common/math/chi_square.hpp"
 #include "estimator/calibrate/gnss_velocity_check.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "estimator/update/odometer.hpp"
@@ -206,7 +207,8 @@ void refine_latency_with_filter(const NavInputArgs& a, NavInputs& in) {
   // at 10x, 24 drives: rms error / sigma 2.0); the scan steps by the turns' sigma.
   const double turns_s = std::max(in.imu_latency.sigma_s, 0.002), prior_s = 2.0 * turns_s;
   // One pass with the IMU stamps moved earlier by lag_s: each GNSS position's (t, NIS + ln det S), an outlier
-  // counted as at the gate. False when the run failed.
+  // counted as at the filter's gate. False when the run failed.
+  const double gate = math::chi_square_quantile(o.gate_probability, 3);
   const auto pass = [&](const est::FilterOptions& opt, double lag_s, std::vector<std::pair<double, double>>& terms,
                         est::ImuNoiseScale* noise) {
     terms.clear();
@@ -216,7 +218,7 @@ void refine_latency_with_filter(const NavInputArgs& a, NavInputs& in) {
       const Eigen::LLT<Eigen::MatrixXd> llt(r.S);
       if (llt.info() != Eigen::Success) return;
       const Eigen::MatrixXd L = llt.matrixL();
-      terms.push_back({r.t_s, std::min(r.nis, 21.1) + 2.0 * L.diagonal().array().log().sum()});
+      terms.push_back({r.t_s, std::min(r.nis, gate) + 2.0 * L.diagonal().array().log().sum()});
     };
     try {
       est::NavFilter filter(opt);
