@@ -2,7 +2,7 @@
 // 1 Hz RTK and a hidden lever arm (so the diagnosis goes through screening, confirmation, rescreening).
 //   build/bin/bench_diagnose
 // Target (issue 6): the whole diagnosis under 10 times one `ldv nav` run. End to end from files:
-//   ldv sim --grade hg1700 --duration 1800 --effect lever_arm --out /tmp/d30
+//   ldv sim --grade hg1700-typical --duration 1800 --effect lever_arm --out /tmp/d30
 //   time ldv nav --kfgins-config /tmp/d30/kfgins.yaml --out /tmp/d30/nav.nav
 //   time ldv diagnose --kfgins-config /tmp/d30/kfgins.yaml --json /tmp/d30/diag.json
 #include <benchmark/benchmark.h>
@@ -17,7 +17,7 @@ using namespace ldv;
 const sim::SimResult& drive() {
   static const sim::SimResult r = [] {
     sim::SimRequest req;
-    req.grade = "hg1700";
+    req.grade = "hg1700-typical";
     req.duration_s = 1800.0;
     req.scenario = "drive";
     req.effects = {"lever_arm"};

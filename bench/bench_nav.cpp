@@ -17,7 +17,7 @@ using namespace ldv;
 sim::SimResult& drive() {
   static sim::SimResult r = [] {
     sim::SimRequest req;
-    req.grade = "hg1700";
+    req.grade = "hg1700-typical";
     req.duration_s = 900.0;
     req.gnss_rate_hz = 5.0;
     req.scenario = "drive";

@@ -1,9 +1,9 @@
 // `ldv outage` speed, and a Table 12 layout on the simulator's stand-in grades.
-//   build/bin/bench_outage                         1 h of 200 Hz hg1700 drive, outages of 1, 2, 5, 10 min
+//   build/bin/bench_outage                         1 h of 200 Hz hg1700-typical drive, outages of 1, 2, 5, 10 min
 //   build/bin/bench_outage --table12=OUT.md [--hours=1] [--model=kfgins21]
-//       the stand-in grades hg1700, hg1900, 3dm-gx2 on the same land-vehicle drive, Markdown table. The paper's
-//       Table 12 with the paper's own grades beside its numbers is bench/paper_tables/table12.sh
-//       (docs/paper_table12.md).
+//       the stand-in grades hg1700-typical, hg1900-typical, 3dm-gx2-typical on the same land-vehicle drive,
+//       Markdown table. The paper's Table 12 with the paper's own grades beside its numbers is
+//       bench/paper_tables/table12.sh (docs/paper_table12.md).
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -43,7 +43,7 @@ assess::OutageRun outages(const sim::SimResult& s, const std::string& model) {
 }
 
 void BM_Outage1h200Hz4Lengths(benchmark::State& state) {
-  static const sim::SimResult s = drive("hg1700", 3600.0);
+  static const sim::SimResult s = drive("hg1700-typical", 3600.0);
   for (auto _ : state) {
     const assess::OutageRun run = outages(s, "");
     state.counters["outages"] = static_cast<double>(run.outages.size());
@@ -62,7 +62,7 @@ std::string cell(double v, int decimals) {
 }
 
 int write_table12(const std::string& path, double hours, const std::string& model) {
-  const char* grades[3] = {"hg1700", "hg1900", "3dm-gx2"};
+  const char* grades[3] = {"hg1700-typical", "hg1900-typical", "3dm-gx2-typical"};
   std::string rows;
   for (const char* g : grades) {
     const auto t0 = std::chrono::steady_clock::now();

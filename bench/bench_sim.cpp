@@ -10,7 +10,7 @@
 namespace {
 ldv::sim::SimRequest hour_with_all_effects() {
   ldv::sim::SimRequest r;
-  r.grade = "hg1700";
+  r.grade = "hg1700-typical";
   r.scenario = "drive";
   r.duration_s = 3600.0;
   r.imu_rate_hz = 200.0;

@@ -16,7 +16,7 @@ using namespace ldv;
 const sim::SimResult& hour_drive() {
   static const sim::SimResult r = [] {
     sim::SimRequest req;
-    req.grade = "hg1700";
+    req.grade = "hg1700-typical";
     req.duration_s = 3600.0;
     req.gnss_rate_hz = 5.0;
     req.scenario = "drive";

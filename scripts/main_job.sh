@@ -15,8 +15,8 @@ out="$PWD/out/main_job"
 rm -rf "$out"; mkdir -p "$out"
 duration_s="${LDV_MAIN_JOB_DURATION_S:-180}"
 
-echo "== 1. simulated vehicle: hg1700 IMU, 5 Hz RTK, hidden GNSS lever arm, ${duration_s} s"
-"$bin/ldv" sim --grade hg1700 --seed 42 --duration "$duration_s" --scenario scripts/main_job/demo_vehicle.yaml \
+echo "== 1. simulated vehicle: hg1700-typical IMU, 5 Hz RTK, hidden GNSS lever arm, ${duration_s} s"
+"$bin/ldv" sim --grade hg1700-typical --seed 42 --duration "$duration_s" --scenario scripts/main_job/demo_vehicle.yaml \
   --gnss-rate 5 --effect lever_arm=0.6,-0.4,-1.3 --out "$out/sim" 2>/dev/null
 
 echo "== 2. the vehicle system in real time (private network namespace; TSPI once a second)"

@@ -4,10 +4,12 @@
 // inside: gyro rad/s, accel m/s^2 (so N is [rad/s/sqrt(Hz)] = [rad/sqrt(s)], K [rad/s/sqrt(s)], ...).
 //
 // A grade is written in YAML in the paper's units (sim/README.md, "Grades"; example: sim/grades/example.yaml).
-// The paper's grades (`hg1700-paper`, `hg1900-paper`, `3dm-gx2-paper`, `3dm-gx2-paper-q-arcsec`) are such YAML
-// texts compiled into imu_grade.cpp (Tables 4-9 per axis and Table 3's datasheets; tests/sim/test_grades.cpp
-// checks every value against ../shared/data/paper/geo_ldv_tables.yaml), read by the same parser as a user's
-// file. `hg1700`, `hg1900`, `3dm-gx2` are still the stand-ins the test suite was built on (sim/README.md).
+// The named grades `hg1700`, `hg1900`, `3dm-gx2` are the paper's (Tables 4-9 per axis as printed, the 3DM-GX2 gyro
+// Q in degrees, and Table 3's datasheets; `3dm-gx2-q-arcsec` reads that Q as arcsec): YAML texts compiled into
+// imu_grade.cpp, read by the same parser as a user's file (tests/sim/test_grades.cpp checks every value against
+// ../shared/data/paper/geo_ldv_tables.yaml). Aliases: `hg1700-paper`, `hg1900-paper`, `3dm-gx2-paper`, `3dmgx2`,
+// `gx2`, `3dm-gx2-paper-q-arcsec`. `hg1700-typical`, `hg1900-typical`, `3dm-gx2-typical` are datasheet-level
+// stand-ins with typical in-run terms, the ones the engineering and filter-consistency tests use (sim/README.md).
 #include <string>
 #include <vector>
 
@@ -49,7 +51,8 @@ std::vector<std::string> imu_grade_names();
 ImuGrade load_imu_grade_file(const std::string& path);
 // The same from text; `file` names it in errors.
 ImuGrade parse_imu_grade_yaml(const std::string& text, const std::string& file);
-// The YAML text of a built-in grade ("" for an unknown name or "perfect"): what `ldv sim --print-grade` prints.
+// The YAML text of a built-in grade ("" for an unknown name, "perfect" and the `-typical` grades): what
+// `ldv sim --print-grade` prints.
 std::string builtin_grade_yaml(const std::string& name);
 
 }  // namespace ldv::sim

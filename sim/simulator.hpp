@@ -27,7 +27,7 @@ struct Outage {
 };
 
 struct SimRequest {
-  std::string grade = "perfect";  // perfect | hg1700 | hg1900 | 3dm-gx2
+  std::string grade = "perfect";  // sim::imu_grade_names() or a grade YAML file
   uint64_t seed = 1;
   double duration_s = 600.0;
   std::string scenario = "figure8";  // a built-in name or a YAML file path

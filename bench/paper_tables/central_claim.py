@@ -40,8 +40,8 @@ DATASHEET_GAPS = {
                     "vrw_source": "0.065 ft/s/sqrt(h) (Honeywell's public HG1700 brochure) x 0.3048"},
     "HG1900_CA29": {"vrw_mps_sqrt_h": 0.065 * FT,   # the same Honeywell tactical accelerometer class
                     "vrw_source": "the HG1700 brochure's 0.065 ft/s/sqrt(h) x 0.3048 (same Honeywell class)"},
-    "3DM-GX2": {"vrw_mps_sqrt_h": 0.1,              # a consumer-MEMS figure (ldv sim's 3dm-gx2 stand-in)
-                "vrw_source": "0.1 m/s/sqrt(h), the consumer-MEMS figure of ldv sim's 3dm-gx2 stand-in grade"},
+    "3DM-GX2": {"vrw_mps_sqrt_h": 0.1,              # a consumer-MEMS figure (ldv sim's 3dm-gx2-typical)
+                "vrw_source": "0.1 m/s/sqrt(h), the consumer-MEMS figure of ldv sim's 3dm-gx2-typical grade"},
 }
 CORRTIME_H = 1.0  # no datasheet gives a correlation time: KF-GINS-family configurations use 1 h (KF-GINS's own 4 h)
 # The variant "true, scale states constant": KF-GINS's one corrtime is also the scale states' GM time; with the

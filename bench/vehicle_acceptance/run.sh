@@ -1,8 +1,9 @@
 #!/bin/bash
-# The real-vehicle acceptance matrix (issue 12): `ldv sim --realism vehicle` drives (MEMS 3dm-gx2 and tactical
-# hg1700, 1 and 4 Hz RTK, seeds 1-4, 400 s) and four single-effect drives, each run from the datasheet config a
-# new user writes (no initial state, lever arm or latency) through `ldv nav`, `ldv compare` against the truth
-# and, for MEMS at 1 and 4 Hz, `ldv diagnose --iterate`. One ldv process at a time (nice 10), ~3 min.
+# The real-vehicle acceptance matrix (issue 12): `ldv sim --realism vehicle` drives (MEMS 3dm-gx2-typical and
+# tactical hg1700-typical, 1 and 4 Hz RTK, seeds 1-4, 400 s) and four single-effect drives, each run from the
+# datasheet config a new user writes (no initial state, lever arm or latency) through `ldv nav`, `ldv compare`
+# against the truth and, for MEMS at 1 and 4 Hz, `ldv diagnose --iterate`. One ldv process at a time (nice 10),
+# ~3 min.
 # Usage: bench/vehicle_acceptance/run.sh [LDV [OUT_DIR]]  (defaults build/bin/ldv, out/vehicle_acceptance)
 #   -> OUT_DIR/runs/<name>/..., OUT_DIR/results.jsonl, OUT_DIR/results_table.md (the criteria at its end)
 set -u
@@ -51,17 +52,17 @@ PY
   nice -n 10 python3 $HERE/analyze.py $d $name >> results.jsonl
   echo "done $name"
 }
-for grade in 3dm-gx2 hg1700; do
-  g=$([ $grade = 3dm-gx2 ] && echo mems || echo tact)
+for grade in 3dm-gx2-typical hg1700-typical; do
+  g=$([ $grade = 3dm-gx2-typical ] && echo mems || echo tact)
   for rate in 1 4; do
     for seed in 1 2 3 4; do
       one ${g}_${rate}hz_s$seed $grade $seed $rate $([ $g = mems ] && echo 1 || echo 0) --realism vehicle
     done
   done
 done
-one single_vibration 3dm-gx2 1 4 0 --vibration 10
-one single_latency   3dm-gx2 1 4 0 --imu-latency 0.25
-one single_mounting  3dm-gx2 1 4 0 --mounting 0,0,180
-one single_outliers  3dm-gx2 1 4 0 --gnss-outliers 0.01
+one single_vibration 3dm-gx2-typical 1 4 0 --vibration 10
+one single_latency   3dm-gx2-typical 1 4 0 --imu-latency 0.25
+one single_mounting  3dm-gx2-typical 1 4 0 --mounting 0,0,180
+one single_outliers  3dm-gx2-typical 1 4 0 --gnss-outliers 0.01
 python3 "$HERE/report.py" "$A" > /dev/null
 echo "$A/results_table.md"

@@ -31,7 +31,7 @@ constexpr double kOutage_s = 60.0;
 const sim::SimResult& drive() {
   static const sim::SimResult s = [] {
     sim::SimRequest r;
-    r.grade = "hg1700";
+    r.grade = "hg1700-typical";
     r.seed = 16;
     r.duration_s = 330.0;
     r.scenario = "drive";

@@ -28,7 +28,7 @@ OutageRun outages(const sim::SimResult& s, const std::vector<double>& lengths, b
 }  // namespace
 
 TEST(OutagePlan, StartsDuringManoeuvresAfterConvergenceWithoutOverlap) {
-  const auto& s = test::sim_drive("hg1700", 900.0);
+  const auto& s = test::sim_drive("hg1700-typical", 900.0);
   const std::vector<OutageWindow> plan = plan_outages(s.gnss, {60.0, 120.0}, s.imu.back().t_s, {});
   ASSERT_GE(plan.size(), 6u);
   const double t0 = s.gnss.front().t_s;
@@ -47,7 +47,7 @@ TEST(OutagePlan, StartsDuringManoeuvresAfterConvergenceWithoutOverlap) {
 }
 
 TEST(OutageEngine, CheckpointRestartsMatchFullRerunsWithTheFixesRemoved) {
-  const auto& s = test::sim_drive("hg1700", 700.0);
+  const auto& s = test::sim_drive("hg1700-typical", 700.0);
   const OutageRun fast = outages(s, {60.0, 120.0}, false);
   const OutageRun exact = outages(s, {60.0, 120.0}, true);
   ASSERT_EQ(fast.outages.size(), exact.outages.size());
@@ -75,7 +75,7 @@ TEST(OutageEngine, PerfectSensorsBarelyDrift) {
 }
 
 TEST(OutageEngine, TacticalDriftHasTheClosedFormSizeAndStaysInTheEnvelope) {
-  const auto& s = test::sim_drive("hg1700", 1500.0);
+  const auto& s = test::sim_drive("hg1700-typical", 1500.0);
   // ZUPT on: the drive stops inside some outages. Zero-velocity updates while still braking (|f| ~ g, w ~ 0)
   // once dragged the position by tens of metres with a collapsed sigma (76 % inside at 120 s); a stop now also
   // needs f_h ~ 0, and the stops shrink the drift (about 1-2 m after 120 s instead of 5-25 m without ZUPT).
@@ -105,7 +105,7 @@ TEST(OutageEngine, TacticalDriftHasTheClosedFormSizeAndStaysInTheEnvelope) {
 TEST(OutageEngine, SmoothedGapsTieBothEndsAndAreReportedInTableAndJson) {
   // `ldv outage --smooth`: per length one forward + RTS run with all of its gaps cut. Inside each gap the largest
   // smoothed error is far below the forward filter's (the same run's), and within the smoother's own 3 sigma.
-  const auto& s = test::sim_drive("hg1700", 900.0);
+  const auto& s = test::sim_drive("hg1700-typical", 900.0);
   est::FilterOptions fo = est::options_from_kfgins(s.kfgins);
   fo.zupt.enabled = false;
   OutageRunOptions o;

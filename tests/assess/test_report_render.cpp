@@ -65,7 +65,7 @@ TEST(ReportRender, PageWithEveryPlotOpensInChromium) {
   const fs::path dir = fs::temp_directory_path() / "ldv_assess_report_test";
   fs::remove_all(dir);
   fs::create_directories(dir);
-  sim::SimResult s = test::sim_drive("hg1700", 400.0);
+  sim::SimResult s = test::sim_drive("hg1700-typical", 400.0);
   sim::write_outputs(s, (dir / "sim").string());
   const std::string cfg = (dir / "sim" / "kfgins.yaml").string(), truth = (dir / "sim" / "truth.nav").string();
   ASSERT_EQ(run(kLdv + " nav --quiet --kfgins-config " + cfg + " --out " + (dir / "run.nav").string()), 0);
@@ -121,7 +121,7 @@ TEST(ReportRender, SmoothedRunHasTheSmoothingSection) {
   const fs::path dir = fs::temp_directory_path() / "ldv_assess_report_smooth_test";
   fs::remove_all(dir);
   sim::SimRequest req;
-  req.grade = "hg1700";
+  req.grade = "hg1700-typical";
   req.seed = 4;
   req.duration_s = 240.0;
   req.scenario = "figure8";

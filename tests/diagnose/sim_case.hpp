@@ -11,7 +11,7 @@
 namespace ldv::diag::testing {
 
 struct SimCase {
-  std::string grade = "hg1700";
+  std::string grade = "hg1700-typical";
   std::string effect;  // "" = none; "NAME" or "NAME=v1,v2,v3" (sim/README.md units)
   uint64_t seed = 1;
   double duration_s = 900.0;

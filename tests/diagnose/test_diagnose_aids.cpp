@@ -38,7 +38,7 @@ YAML::Node diagnose_drive(sim::SimRequest req, const std::string& aid, const std
 
 sim::SimRequest mems_drive(uint64_t seed) {
   sim::SimRequest req;
-  req.grade = "3dm-gx2";
+  req.grade = "3dm-gx2-typical";
   req.seed = seed;
   req.duration_s = 480.0;
   req.scenario = "drive";

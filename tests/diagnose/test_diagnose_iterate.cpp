@@ -34,7 +34,7 @@ std::string run(const std::string& args, const fs::path& log) {
 TEST(DiagnoseIterate, TwoHiddenEffectsAreAddedStepByStepAndTheTunedConfigUsesEveryFix) {
   const fs::path dir = fs::temp_directory_path() / ("ldv_iterate_" + std::to_string(getpid()));
   sim::SimRequest req;
-  req.grade = "hg1700";
+  req.grade = "hg1700-typical";
   req.seed = 41;
   req.duration_s = 600.0;
   req.scenario = "drive";

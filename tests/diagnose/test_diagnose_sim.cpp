@@ -23,7 +23,7 @@ void expect_found_and_fixed(const Trial& t) {
 }  // namespace
 
 TEST(DiagnoseSim, NoHiddenEffectAddsNothing) {
-  for (const char* grade : {"hg1700", "3dm-gx2"})
+  for (const char* grade : {"hg1700-typical", "3dm-gx2-typical"})
     for (uint64_t seed : {11u, 12u, 13u}) {
       const Outcome o = testing::run_trial({grade, "", "kfgins21", seed});
       EXPECT_FALSE(o.verdict_any) << grade << " seed " << seed << ": top candidate " << o.first;
@@ -31,20 +31,20 @@ TEST(DiagnoseSim, NoHiddenEffectAddsNothing) {
 }
 
 TEST(DiagnoseSim, HiddenLeverArmIsFoundEstimatedAndRemovesTheError) {
-  expect_found_and_fixed({"hg1700", "lever_arm=0.5,-0.3,-1.2", "kfgins21", 21});
+  expect_found_and_fixed({"hg1700-typical", "lever_arm=0.5,-0.3,-1.2", "kfgins21", 21});
 }
 
 TEST(DiagnoseSim, HiddenTimeOffsetIsFoundAndRemovesTheError) {
-  expect_found_and_fixed({"hg1700", "time_offset=0.05", "kfgins21", 22});
+  expect_found_and_fixed({"hg1700-typical", "time_offset=0.05", "kfgins21", 22});
 }
 
 TEST(DiagnoseSim, HiddenGyroScaleIsFoundByAnIns15Model) {
   // kfgins21 already estimates gyro_scale: the model under test is ins15.
-  expect_found_and_fixed({"hg1700", "gyro_scale=1500,-1000,2000", "ins15", 23});
+  expect_found_and_fixed({"hg1700-typical", "gyro_scale=1500,-1000,2000", "ins15", 23});
 }
 
 TEST(DiagnoseSim, MemsLeverArmIsRankedFirst) {
-  const Outcome o = testing::run_trial({"3dm-gx2", "lever_arm=0.5,-0.3,-1.2", "kfgins21", 24});
+  const Outcome o = testing::run_trial({"3dm-gx2-typical", "lever_arm=0.5,-0.3,-1.2", "kfgins21", 24});
   EXPECT_TRUE(o.ranked_first) << o.first;
   EXPECT_TRUE(o.verdict_has);
 }

@@ -10,7 +10,7 @@
 namespace ldv::diag::testing {
 
 struct Trial {
-  std::string grade = "hg1700";
+  std::string grade = "hg1700-typical";
   std::string effect;  // spec as for `ldv sim --effect`, "" = none
   std::string model = "kfgins21";
   uint64_t seed = 1;

@@ -1,12 +1,12 @@
-// The smoother's criteria (issue 15) over seeds: tactical (hg1700) and consumer MEMS (3dm-gx2), a 60 s and a
-// 120 s GNSS outage in the turns of a figure 8, seeds 1-6 (the default suite runs one seed of each:
+// The smoother's criteria (issue 15) over seeds: tactical (hg1700-typical) and consumer MEMS (3dm-gx2-typical),
+// a 60 s and a 120 s GNSS outage in the turns of a figure 8, seeds 1-6 (the default suite runs one seed of each:
 // test_rts_smoother.cpp). Label montecarlo: `ctest --test-dir build -L montecarlo -R smoother`.
 //
 // The share of the forward drift is checked over the seeds (sum of the smoothed maxima over the sum of the forward
 // end drifts, per gap length): the forward drift at a gap's end is one draw of a random walk and can end near
-// zero by chance (hg1700 60 s gaps: 1.3-4.8 m), while the smoothed error inside a gap has a floor the ends cannot
-// remove (the gyro's white noise, 0.125 deg/sqrt(h), tilts the platform by a random walk that both ends only
-// pin: ~0.1-0.3 m in 60 s). Every gap is printed; each seed must also be consistent (3 sigma, NEES).
+// zero by chance (hg1700-typical 60 s gaps: 1.3-4.8 m), while the smoothed error inside a gap has a floor the
+// ends cannot remove (the gyro's white noise, 0.125 deg/sqrt(h), tilts the platform by a random walk that both
+// ends only pin: ~0.1-0.3 m in 60 s). Every gap is printed; each seed must also be consistent (3 sigma, NEES).
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -39,9 +39,9 @@ void expect_over_seeds(const char* grade, double max_ratio) {
   std::printf("%s: %d of %d gaps within %.2f of their own forward drift\n", grade, within_own_ratio, total, max_ratio);
 }
 
-TEST(SmootherSeeds, TacticalSmoothedGapErrorIsATenthOfTheForwardDrift) { expect_over_seeds("hg1700", 0.1); }
+TEST(SmootherSeeds, TacticalSmoothedGapErrorIsATenthOfTheForwardDrift) { expect_over_seeds("hg1700-typical", 0.1); }
 
-TEST(SmootherSeeds, MemsSmoothedGapErrorIsAQuarterOfTheForwardDrift) { expect_over_seeds("3dm-gx2", 0.25); }
+TEST(SmootherSeeds, MemsSmoothedGapErrorIsAQuarterOfTheForwardDrift) { expect_over_seeds("3dm-gx2-typical", 0.25); }
 
 }  // namespace
 }  // namespace ldv::est

@@ -45,11 +45,11 @@ void expect_consistent(const test::Accuracy& a, bool position_too = true) {
 }
 
 TEST(Accuracy, TacticalGradeRtk5HzWithOutageKfgins21) {
-  const auto sim = simulate("hg1700", 5.0, 11, 600.0, {{300.0, 60.0}});
+  const auto sim = simulate("hg1700-typical", 5.0, 11, 600.0, {{300.0, 60.0}});
   FilterOptions o = options_from_kfgins(sim.kfgins);
   o.model = "kfgins21";
   const auto a = test::evaluate(sim, o);
-  report("hg1700 5 Hz kfgins21", a);
+  report("hg1700-typical 5 Hz kfgins21", a);
   EXPECT_LT(a.horiz_rms_m, 0.03);
   EXPECT_LT(a.vel_rms_mps, 0.02);
   EXPECT_LT(a.roll_pitch_rms_deg, 0.02);
@@ -59,11 +59,11 @@ TEST(Accuracy, TacticalGradeRtk5HzWithOutageKfgins21) {
 }
 
 TEST(Accuracy, TacticalGradeRtk5HzGeoLdv51) {
-  const auto sim = simulate("hg1700", 5.0, 12, 600.0, {{300.0, 60.0}});
+  const auto sim = simulate("hg1700-typical", 5.0, 12, 600.0, {{300.0, 60.0}});
   FilterOptions o = options_from_kfgins(sim.kfgins);
   o.model = "geoldv51";
   const auto a = test::evaluate(sim, o);
-  report("hg1700 5 Hz geoldv51", a);
+  report("hg1700-typical 5 Hz geoldv51", a);
   EXPECT_LT(a.horiz_rms_m, 0.03);
   EXPECT_LT(a.yaw_rms_deg, 0.1);
   EXPECT_LT(a.outage_drift_m, 6.0);
@@ -71,10 +71,10 @@ TEST(Accuracy, TacticalGradeRtk5HzGeoLdv51) {
 }
 
 TEST(Accuracy, MemsGradeRtk1HzWithOutage) {
-  const auto sim = simulate("3dm-gx2", 1.0, 13, 600.0, {{300.0, 60.0}});
+  const auto sim = simulate("3dm-gx2-typical", 1.0, 13, 600.0, {{300.0, 60.0}});
   FilterOptions o = options_from_kfgins(sim.kfgins);
   const auto a = test::evaluate(sim, o);
-  report("3dm-gx2 1 Hz kfgins21", a);
+  report("3dm-gx2-typical 1 Hz kfgins21", a);
   EXPECT_LT(a.horiz_rms_m, 0.10);
   EXPECT_LT(a.roll_pitch_rms_deg, 0.2);
   EXPECT_LT(a.yaw_rms_deg, 1.0);

@@ -55,10 +55,10 @@ KfGinsConfig config_with_noise(const fs::path& dir, const std::string& noise_yam
 }
 
 TEST(AllanToFilter, TheIdentifiedNoiseKeepsTheFilterAsConsistentAsTheTrueTerms) {
-  // The stand-in MEMS sensor (3dm-gx2: Q, N, Gauss-Markov B with 300 s, K and a ramp on every axis); a
+  // The stand-in MEMS sensor (3dm-gx2-typical: Q, N, Gauss-Markov B with 300 s, K and a ramp on every axis); a
   // 2 h static record at 50 Hz: the Gauss-Markov's 300 s seen 24 times over.
   sim::SimRequest still;
-  still.grade = "3dm-gx2";
+  still.grade = "3dm-gx2-typical";
   still.scenario = "static";
   still.duration_s = 7200.0;
   still.imu_rate_hz = 50.0;
@@ -71,7 +71,7 @@ TEST(AllanToFilter, TheIdentifiedNoiseKeepsTheFilterAsConsistentAsTheTrueTerms) 
   std::printf("%s", noise_yaml.c_str());
 
   sim::SimRequest drive;
-  drive.grade = "3dm-gx2";
+  drive.grade = "3dm-gx2-typical";
   drive.scenario = "drive";
   drive.duration_s = 600.0;
   drive.gnss_rate_hz = 1.0;

@@ -12,7 +12,7 @@ namespace {
 
 TEST(DelayedGnss, LateFixesGiveTheOnTimeAnswer) {
   sim::SimRequest req;
-  req.grade = "hg1700";
+  req.grade = "hg1700-typical";
   req.duration_s = 120.0;
   req.gnss_rate_hz = 5.0;
   req.scenario = "drive";

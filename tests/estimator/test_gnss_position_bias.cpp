@@ -62,7 +62,7 @@ TEST(GnssPositionBias, HColumnIsIdentityAndNoiseIsTheWhitePart) {
 
 TEST(GnssPositionBias, PositionNeesConsistentOnCorrelatedRtk) {
   sim::SimRequest req;
-  req.grade = "hg1700";
+  req.grade = "hg1700-typical";
   req.seed = 21;
   req.duration_s = 480.0;
   req.scenario = "drive";
@@ -74,7 +74,7 @@ TEST(GnssPositionBias, PositionNeesConsistentOnCorrelatedRtk) {
   with.add = {"gnss_position_bias"};
   const auto a = test::evaluate(sim, plain);
   const auto b = test::evaluate(sim, with);
-  std::printf("hg1700 5 Hz RTK (white 8 mm + Gauss-Markov 8 mm / 60 s): position NEES kfgins21 %.2f, "
+  std::printf("hg1700-typical 5 Hz RTK (white 8 mm + Gauss-Markov 8 mm / 60 s): position NEES kfgins21 %.2f, "
               "+gnss_position_bias %.2f (3 expected); horizontal RMS %.4f -> %.4f m; vel NEES %.2f -> %.2f\n",
               a.nees_pos, b.nees_pos, a.horiz_rms_m, b.horiz_rms_m, a.nees_vel, b.nees_vel);
   // Time-averaged NEES of errors correlated over ~60 s: 480 s hold ~8 independent samples of 3 dof,

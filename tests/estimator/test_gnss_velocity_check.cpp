@@ -13,7 +13,7 @@ namespace {
 
 sim::SimResult figure8_with_velocity() {
   sim::SimRequest r;
-  r.grade = "hg1700";
+  r.grade = "hg1700-typical";
   r.seed = 8;
   r.duration_s = 200.0;
   r.scenario = "figure8";

@@ -68,7 +68,7 @@ TEST(HeadingCheck, GivenAStraightRunWithAGnssOutlier_ThenNothingIsConcluded) {
 
 TEST(HeadingCheck, GivenADriveWithGnssOutliers_WhenTheAlignmentIsRight_ThenItIsNeverRedone) {
   sim::SimRequest req;
-  req.grade = "3dm-gx2";
+  req.grade = "3dm-gx2-typical";
   req.scenario = "drive";
   req.duration_s = 400.0;  // to the last stop, after 30 s at 25 m/s
   req.gnss_rate_hz = 4.0;

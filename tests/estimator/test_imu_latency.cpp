@@ -74,9 +74,11 @@ TEST_P(ImuLatency, KnownLagIsFoundWithinThreeSigma) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Drives, ImuLatency,
-                         ::testing::Values(Case{"hg1700", 0.0, "level"}, Case{"hg1700", 0.25, "level"},
-                                           Case{"3dm-gx2", 0.0, "level"}, Case{"3dm-gx2", 0.15, "backwards"},
-                                           Case{"3dm-gx2", 0.3, "upside_down"}, Case{"3dm-gx2", -0.05, "tilted"}));
+                         ::testing::Values(Case{"hg1700-typical", 0.0, "level"}, Case{"hg1700-typical", 0.25, "level"},
+                                           Case{"3dm-gx2-typical", 0.0, "level"},
+                                           Case{"3dm-gx2-typical", 0.15, "backwards"},
+                                           Case{"3dm-gx2-typical", 0.3, "upside_down"},
+                                           Case{"3dm-gx2-typical", -0.05, "tilted"}));
 
 TEST(ImuLatencyLimits, NoTurningGivesNoEstimate) {
   std::vector<ImuIncrement> imu(2000);
@@ -103,7 +105,7 @@ namespace ldv::est {
 // job's drive (0.6 m forward, 12 m/s) read as 50 ms before the lever arm was fitted alongside.
 TEST(ImuLatencyLeverArm, AForwardLeverArmIsNotTakenForALag) {
   sim::SimRequest r;
-  r.grade = "hg1700";
+  r.grade = "hg1700-typical";
   r.seed = 5;
   r.duration_s = 240.0;
   r.scenario = "figure8";
@@ -135,7 +137,7 @@ namespace {
 TEST(ImuLatencyInstalled, GivenVibrationAnUpsideDownMountingAndGnssOutliers_ThenTheLagIsWithinThreeSigma) {
   for (uint64_t seed = 1; seed <= 3; ++seed) {
     sim::SimRequest r;
-    r.grade = "3dm-gx2";
+    r.grade = "3dm-gx2-typical";
     r.seed = seed;
     r.duration_s = 400.0;
     r.scenario = "drive";

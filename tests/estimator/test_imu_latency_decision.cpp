@@ -20,7 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 
 assess::NavInputs load(const std::string& name, double latency_s, const std::vector<std::string>& effects,
-                       const std::string& grade = "hg1700", double gnss_rate_hz = 1.0, double vibration = 0.0,
+                       const std::string& grade = "hg1700-typical", double gnss_rate_hz = 1.0, double vibration = 0.0,
                        std::uint64_t seed = 1) {
   sim::SimRequest r;
   r.grade = grade;
@@ -61,7 +61,7 @@ TEST(ImuLatencyDecision, GivenALagALeverArmCouldExplain_WhenTheFilterFitsBetterW
 // time_offset state, whose Jacobian is the filter's own velocity: under vibration that was biased late by 5-26 ms
 // at a sigma of 4.6 ms, an RMS z of 3.3 over 24 drives.)
 TEST(ImuLatencyDecision, GivenAMemsImuLateBy240ms_ThenTheFilterPassRefinesTheTurnsEstimate) {
-  const assess::NavInputs in = load("mems", 0.240, {}, "3dm-gx2", 4.0, 0.0, 4);
+  const assess::NavInputs in = load("mems", 0.240, {}, "3dm-gx2-typical", 4.0, 0.0, 4);
   ASSERT_TRUE(in.imu_latency_applied) << in.imu_note;
   ASSERT_TRUE(in.imu_latency_refined.done) << in.imu_note;
   EXPECT_LT(in.imu_latency_refined.sigma_s, 0.7 * in.imu_latency.sigma_s);
@@ -69,7 +69,7 @@ TEST(ImuLatencyDecision, GivenAMemsImuLateBy240ms_ThenTheFilterPassRefinesTheTur
   double sum_z2 = 0.0;
   int refined = 0;
   for (std::uint64_t seed = 1; seed <= 6; ++seed) {
-    const assess::NavInputs v = load("mems_vibrating", 0.240, {}, "3dm-gx2", 4.0, 10.0, seed);
+    const assess::NavInputs v = load("mems_vibrating", 0.240, {}, "3dm-gx2-typical", 4.0, 10.0, seed);
     ASSERT_TRUE(v.imu_latency_applied) << v.imu_note;
     if (!v.imu_latency_refined.done) continue;  // left at the turns' estimate: checked by ImuLatency*
     const double z = (v.imu_latency_refined.lag_s - 0.240) / v.imu_latency_refined.sigma_s;

@@ -47,7 +47,7 @@ TEST(ImuNoiseAdaptation, TwentyTimesTheConfiguredNoiseIsFoundAndTheFixesAreUsed)
   // A consumer MEMS IMU on a vibrating vehicle: white noise 20x the 3DM-GX2's datasheet figures (1 Hz
   // RTK, so that the noise shows between fixes); the filter is configured with a twentieth of that.
   sim::SimRequest r;
-  r.custom_grade = sim::imu_grade("3dm-gx2");
+  r.custom_grade = sim::imu_grade("3dm-gx2-typical");
   r.custom_grade->gyro.white_N *= 20.0;
   r.custom_grade->accel.white_N *= 20.0;
   r.seed = 31;
@@ -80,7 +80,7 @@ TEST(ImuNoiseAdaptation, TwentyTimesTheConfiguredNoiseIsFoundAndTheFixesAreUsed)
 
 TEST(ImuNoiseAdaptation, RightNoiseStaysAtTheConfiguredFloor) {
   sim::SimRequest r;
-  r.grade = "hg1700";
+  r.grade = "hg1700-typical";
   r.seed = 32;
   r.duration_s = 200.0;
   r.scenario = "drive";
@@ -96,7 +96,7 @@ TEST(ImuNoiseAdaptation, RightNoiseStaysAtTheConfiguredFloor) {
 // measures each sensor's noise, which becomes that sensor's floor: the attitude error stays within its sigma.
 TEST(ImuNoiseAdaptation, GyroAndAccelVibrationMeasuredApartKeepTheAttitudeConsistent) {
   sim::SimRequest r;
-  r.grade = "hg1700";
+  r.grade = "hg1700-typical";
   r.seed = 33;
   r.duration_s = 300.0;
   r.scenario = "drive";  // starts at rest

@@ -13,7 +13,7 @@ namespace {
 
 sim::SimResult vibrating_car(double gnss_rate_hz) {
   sim::SimRequest req;
-  req.grade = "3dm-gx2";
+  req.grade = "3dm-gx2-typical";
   req.scenario = "straight";  // 10 s at rest, then straight runs
   req.duration_s = 60.0;
   req.gnss_rate_hz = gnss_rate_hz;
@@ -48,7 +48,7 @@ TEST(InstalledImuNoise,
 
 TEST(InstalledImuNoise, GivenADriveWithoutAStop_ThenNoStandstillIsFound) {
   sim::SimRequest req;
-  req.grade = "3dm-gx2";
+  req.grade = "3dm-gx2-typical";
   req.scenario = "turns";
   req.duration_s = 60.0;
   req.gnss_rate_hz = 4.0;
@@ -68,7 +68,7 @@ TEST(InstalledImuNoise, GivenADriveWithoutAStop_ThenNoStandstillIsFound) {
 // scatter read the accelerometers' as 3x their true density, 320x their datasheet PSD instead of 100x).
 TEST(InstalledImuNoise, GivenEngineHarmonicsOnTopOfTheVibration_ThenTheWhiteNoiseIsStillTenTimesTheDatasheet) {
   sim::SimRequest req;
-  req.grade = "hg1700";  // a small white noise: the harmonics would dominate the scatter
+  req.grade = "hg1700-typical";  // a small white noise: the harmonics would dominate the scatter
   req.scenario = "straight";
   req.duration_s = 60.0;
   req.gnss_rate_hz = 4.0;

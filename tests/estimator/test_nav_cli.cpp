@@ -39,7 +39,7 @@ class NavCli : public ::testing::Test {
   static void SetUpTestSuite() {
     dir_ = fs::temp_directory_path() / ("ldv_nav_cli_" + std::to_string(::getpid()));
     sim::SimRequest req;
-    req.grade = "hg1700";
+    req.grade = "hg1700-typical";
     req.seed = 5;
     req.duration_s = 60.0;
     req.scenario = "drive";
@@ -87,7 +87,7 @@ TEST_F(NavCli, WritesKfginsNavIntoOutputPathWithWeekStdAndInnovations) {
 TEST(SmoothCli, WritesTheSmoothedNavStdAndSeparation) {
   const fs::path dir = fs::temp_directory_path() / ("ldv_smooth_cli_" + std::to_string(::getpid()));
   sim::SimRequest req;
-  req.grade = "hg1700";
+  req.grade = "hg1700-typical";
   req.seed = 9;
   req.duration_s = 200.0;
   req.scenario = "figure8";

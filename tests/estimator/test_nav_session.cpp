@@ -16,7 +16,7 @@ namespace {
 
 sim::SimResult backwards_mems_drive() {
   sim::SimRequest req;
-  req.grade = "3dm-gx2";  // a MEMS gyro cannot gyrocompass: the heading comes from the GNSS course
+  req.grade = "3dm-gx2-typical";  // a MEMS gyro cannot gyrocompass: the heading comes from the GNSS course
   req.scenario = "drive";
   req.duration_s = 150.0;
   req.gnss_rate_hz = 5.0;
@@ -168,7 +168,7 @@ TEST(NavSession, GivenAnImuMountedSideways_WhenFourHeadingsAreTried_ThenTheAccel
   // 90 deg, not 180: a sign error in the heading found from the accelerations would pick 270 and end 180 off.
   for (const double mount_yaw_deg : {90.0, -90.0}) {
     sim::SimRequest req;
-    req.grade = "3dm-gx2";
+    req.grade = "3dm-gx2-typical";
     req.scenario = "drive";
     req.duration_s = 150.0;
     req.gnss_rate_hz = 5.0;
@@ -210,7 +210,7 @@ TEST(NavSession, GivenARightAlignment_WhenTheGnssGoesAwayForAMinute_ThenNoRedo) 
 
 TEST(NavSession, GivenAStateForTheStartTime_WhenTheDataStartLater_ThenTheGnssDecidesWhetherItStillHolds) {
   sim::SimRequest req;
-  req.grade = "hg1700";
+  req.grade = "hg1700-typical";
   req.scenario = "drive";  // 60 s at rest, then driving
   req.duration_s = 120.0;
   req.seed = 3;

@@ -108,7 +108,7 @@ TEST_P(RobustUpdate, ARealStepOfTheSolutionIsFollowedWithinThreeSeconds) {
               GetParam().c_str(), stepped.at_end_h_m, clean.at_end_h_m, old.at_end_h_m);
 }
 
-INSTANTIATE_TEST_SUITE_P(Grades, RobustUpdate, ::testing::Values("hg1700", "3dm-gx2"));
+INSTANTIATE_TEST_SUITE_P(Grades, RobustUpdate, ::testing::Values("hg1700-typical", "3dm-gx2-typical"));
 
 TEST(RobustUpdateClosedForm, InflatedNoiseBringsTheNisToTheTarget) {
   const Mat3 HPHt = Vec3(1e-4, 2e-4, 4e-4).asDiagonal();

@@ -158,7 +158,7 @@ TEST(TransitionProduct, EqualsTheDenseProduct) {
 // variances went negative.)
 TEST(RtsRecorder, GivenACovarianceResetBetweenEpochsAndLateFixes_ThenTheSmoothedVarianceStaysBelowTheForward) {
   sim::SimRequest req;
-  req.grade = "hg1700";
+  req.grade = "hg1700-typical";
   req.seed = 3;
   req.duration_s = 120.0;
   req.scenario = "figure8";
@@ -210,11 +210,11 @@ TEST(RtsRecorder, GivenACovarianceResetBetweenEpochsAndLateFixes_ThenTheSmoothed
 }
 
 TEST(RtsSmoother, GivenATacticalImuWith60And120sOutagesInTurns_ThenTheSmoothedGapErrorIsATenthOfTheDrift) {
-  test::expect_smoothing_works(test::smooth_drive("hg1700", 1, {{120.0, 60.0}, {260.0, 120.0}}, 440.0), 0.1);
+  test::expect_smoothing_works(test::smooth_drive("hg1700-typical", 1, {{120.0, 60.0}, {260.0, 120.0}}, 440.0), 0.1);
 }
 
 TEST(RtsSmoother, GivenAMemsImuWith60And120sOutagesInTurns_ThenTheSmoothedGapErrorIsAQuarterOfTheDrift) {
-  test::expect_smoothing_works(test::smooth_drive("3dm-gx2", 2, {{120.0, 60.0}, {260.0, 120.0}}, 440.0), 0.25);
+  test::expect_smoothing_works(test::smooth_drive("3dm-gx2-typical", 2, {{120.0, 60.0}, {260.0, 120.0}}, 440.0), 0.25);
 }
 
 }  // namespace

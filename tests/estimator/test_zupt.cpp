@@ -31,12 +31,12 @@ sim::SimResult stop_and_go(const std::string& grade) {
 }
 
 const sim::SimResult& tactical() {
-  static const sim::SimResult s = stop_and_go("hg1700");
+  static const sim::SimResult s = stop_and_go("hg1700-typical");
   return s;
 }
 
 const sim::SimResult& mems() {
-  static const sim::SimResult s = stop_and_go("3dm-gx2");
+  static const sim::SimResult s = stop_and_go("3dm-gx2-typical");
   return s;
 }
 
@@ -118,7 +118,7 @@ TEST(Zupt, MemsStopEarlyInAnOutageCutsTheDrift) {
   double with = 0.0, without = 0.0;
   for (unsigned seed = 1; seed <= 5; ++seed) {
     sim::SimRequest r;
-    r.grade = "3dm-gx2";
+    r.grade = "3dm-gx2-typical";
     r.scenario = "drive";
     r.duration_s = 700.0;
     r.gnss_rate_hz = 5.0;

@@ -54,7 +54,7 @@ const fs::path& drive_dir() {
   static const fs::path d = [] {
     const fs::path dir = temp_dir("drive");
     sim::SimRequest req;
-    req.grade = "hg1700";
+    req.grade = "hg1700-typical";
     req.seed = 11;
     req.duration_s = 90.0;
     req.scenario = "drive";

@@ -69,7 +69,7 @@ const fs::path& work_dir() {
     const fs::path dir = fs::temp_directory_path() / ("ldv_option_fuzz_" + std::to_string(getpid()));
     fs::create_directories(dir);
     sim::SimRequest req;
-    req.grade = "3dm-gx2";
+    req.grade = "3dm-gx2-typical";
     req.seed = 13;
     req.duration_s = 40.0;
     req.scenario = "drive";

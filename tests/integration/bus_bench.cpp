@@ -135,9 +135,9 @@ int main(int argc, char** argv) {
   fs::create_directories(out_dir);
   const fs::path dir(out_dir);
 
-  // The simulated vehicle: hg1700, 600 Hz IMU, 20 Hz RTK with velocity.
+  // The simulated vehicle: hg1700-typical, 600 Hz IMU, 20 Hz RTK with velocity.
   sim::SimRequest req;
-  req.grade = "hg1700";
+  req.grade = "hg1700-typical";
   req.seed = 3;
   req.duration_s = duration_s + 3.0;
   req.scenario = "figure8";

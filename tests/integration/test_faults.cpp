@@ -127,7 +127,7 @@ TEST(Faults, GivenTheVehicleSystem_WhenEachServiceIsKilledAndBadInputArrives_The
   const double lead_s = 12.0;
   const double start_total_s = std::ceil(test::gps_total_seconds_now() + lead_s);
   sim::SimRequest req;
-  req.grade = "hg1700";
+  req.grade = "hg1700-typical";
   req.seed = 21;
   req.duration_s = kDriveDuration_s;
   req.scenario = (dir / "scenario.yaml").string();

@@ -127,7 +127,7 @@ TEST(
   // Given a tactical-grade drive whose GPS time starts a little after now (a vehicle's host clock is GPS time)
   const double start_total_s = std::ceil(test::gps_total_seconds_now() + 10.0);
   sim::SimRequest req;
-  req.grade = "hg1700";
+  req.grade = "hg1700-typical";
   req.seed = 16;
   req.duration_s = kDriveDuration_s;
   req.scenario = (dir / "scenario.yaml").string();

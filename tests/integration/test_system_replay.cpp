@@ -46,7 +46,7 @@ TEST(SystemReplay, LiveTspiIsAccurateGapFreeAndEqualsTheLogReplay) {
   const fs::path dir = fs::temp_directory_path() / "ldv_system_replay";
   fs::remove_all(dir);
   sim::SimRequest req;
-  req.grade = "hg1700";
+  req.grade = "hg1700-typical";
   req.seed = 7;
   req.duration_s = 130.0;
   req.scenario = "drive";

@@ -38,7 +38,7 @@ void write_event(lcm::LogFile& log, const std::string& channel, const Msg& m, do
 
 TEST(WheelSpeedReplay, GivenAnOdometerOnTheBus_WhenTheLogIsReplayedWithTheOdometerAid_ThenItEqualsTheFileRun) {
   sim::SimRequest req;
-  req.grade = "3dm-gx2";
+  req.grade = "3dm-gx2-typical";
   req.scenario = "drive";
   req.duration_s = 120.0;
   req.gnss_rate_hz = 5.0;

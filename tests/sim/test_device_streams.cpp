@@ -23,7 +23,7 @@ TEST(SimDeviceStreams, Crc16IsTheCcittFalseCheckValue) {
 TEST(SimDeviceStreams, ImuFramesDecodeToTheIncrementsAndTheCounterRunsAtTheOscillatorRate) {
   // Given 30 s at 100 Hz and a 10 MHz counter 25 ppm fast, no latch jitter
   SimRequest q;
-  q.grade = "hg1700";
+  q.grade = "hg1700-typical";
   q.scenario = "turns";
   q.duration_s = 30;
   q.imu_rate_hz = 100;

@@ -1,7 +1,8 @@
-// The built-in grades against the paper's printed tables (read from ../shared/data/paper/geo_ldv_tables.yaml at
-// run time, never retyped here): every term per axis, absent terms absent, Table 3's datasheet constants. The
-// unit conversions below are written independently of sim/imu_grade.cpp, so a typo in a value or a factor
-// there fails. Then the grade YAML file: the example, a round trip of every built-in, and bad input.
+// The named grades (hg1700, hg1900, 3dm-gx2 and their -paper aliases) against the paper's printed tables (read
+// from ../shared/data/paper/geo_ldv_tables.yaml at run time, never retyped here): every term per axis, absent
+// terms absent, Table 3's datasheet constants. The unit conversions below are written independently of
+// sim/imu_grade.cpp, so a typo in a value or a factor there fails. The -typical stand-ins exist beside them. Then
+// the grade YAML file: the example, a round trip of every built-in, and bad input.
 #include <gtest/gtest.h>
 
 #include <yaml-cpp/yaml.h>
@@ -72,55 +73,65 @@ void expect_absent(const TriadErrorModel& m, bool Q, bool N, bool B, bool K, boo
 }  // namespace
 
 TEST(SimGrades, Hg1700IsTables4And5AndItsDatasheet) {
-  const ImuGrade g = imu_grade("hg1700-paper");
-  EXPECT_TRUE(same(g.gyro.quantization_Q, row("table5_hg1700_gyro", "Q_arcsec", arcsec)));
-  EXPECT_TRUE(same(g.gyro.white_N, row("table5_hg1700_gyro", "N_deg_sqrt_h", deg_sqrt_h)));
-  expect_absent(g.gyro, false, false, true, true, true, "hg1700 gyro");  // Table 5: Q + N only
-  EXPECT_TRUE(same(g.accel.quantization_Q, row("table4_hg1700_accel", "Q_m_h", m_h)));
-  EXPECT_TRUE(same(g.accel.white_N, row("table4_hg1700_accel", "N_mps_sqrt_h", mps_sqrt_h)));
-  EXPECT_TRUE(same(g.accel.instability_B, row("table4_hg1700_accel", "B_mps_h", mps_h)));
-  EXPECT_TRUE(same(g.accel.instability_T_s, row("table4_hg1700_accel", "B_time_constant_s", 1.0)));
-  EXPECT_TRUE(same(g.accel.rate_rw_K, row("table4_hg1700_accel", "K_mps_h_sqrt_h", mps_h_sqrt_h)));
-  expect_absent(g.accel, false, false, false, false, true, "hg1700 accel");  // Q + N + B + K
-  const char* ds = "HG1700_AG58";
-  EXPECT_TRUE(same(g.gyro.turn_on_bias_std, Vec3::Constant(datasheet(ds, "gyro_bias_repeatability_deg_h", deg_h))));
-  EXPECT_TRUE(same(g.gyro.scale_std, Vec3::Constant(datasheet(ds, "gyro_scale_factor_linearity_ppm", 1e-6))));
-  EXPECT_TRUE(same(g.gyro.non_orthogonality_std, Vec3::Constant(datasheet(ds, "gyro_non_orthogonality_urad", 1e-6))));
-  EXPECT_TRUE(same(g.accel.turn_on_bias_std, Vec3::Constant(datasheet(ds, "accel_bias_repeatability_mg", mg))));
-  EXPECT_TRUE(same(g.accel.scale_std, Vec3::Constant(datasheet(ds, "accel_scale_factor_repeatability_ppm", 1e-6))));
-  EXPECT_TRUE(
-      same(g.accel.non_orthogonality_std, Vec3::Constant(datasheet(ds, "accel_non_orthogonality_urad", 1e-6))));
+  for (const char* name : {"hg1700", "hg1700-paper"}) {
+    SCOPED_TRACE(name);
+    const ImuGrade g = imu_grade(name);
+    EXPECT_EQ(g.name, name);
+    EXPECT_TRUE(same(g.gyro.quantization_Q, row("table5_hg1700_gyro", "Q_arcsec", arcsec)));
+    EXPECT_TRUE(same(g.gyro.white_N, row("table5_hg1700_gyro", "N_deg_sqrt_h", deg_sqrt_h)));
+    expect_absent(g.gyro, false, false, true, true, true, "hg1700 gyro");  // Table 5: Q + N only
+    EXPECT_TRUE(same(g.accel.quantization_Q, row("table4_hg1700_accel", "Q_m_h", m_h)));
+    EXPECT_TRUE(same(g.accel.white_N, row("table4_hg1700_accel", "N_mps_sqrt_h", mps_sqrt_h)));
+    EXPECT_TRUE(same(g.accel.instability_B, row("table4_hg1700_accel", "B_mps_h", mps_h)));
+    EXPECT_TRUE(same(g.accel.instability_T_s, row("table4_hg1700_accel", "B_time_constant_s", 1.0)));
+    EXPECT_TRUE(same(g.accel.rate_rw_K, row("table4_hg1700_accel", "K_mps_h_sqrt_h", mps_h_sqrt_h)));
+    expect_absent(g.accel, false, false, false, false, true, "hg1700 accel");  // Q + N + B + K
+    const char* ds = "HG1700_AG58";
+    EXPECT_TRUE(same(g.gyro.turn_on_bias_std, Vec3::Constant(datasheet(ds, "gyro_bias_repeatability_deg_h", deg_h))));
+    EXPECT_TRUE(same(g.gyro.scale_std, Vec3::Constant(datasheet(ds, "gyro_scale_factor_linearity_ppm", 1e-6))));
+    EXPECT_TRUE(same(g.gyro.non_orthogonality_std, Vec3::Constant(datasheet(ds, "gyro_non_orthogonality_urad", 1e-6))));
+    EXPECT_TRUE(same(g.accel.turn_on_bias_std, Vec3::Constant(datasheet(ds, "accel_bias_repeatability_mg", mg))));
+    EXPECT_TRUE(same(g.accel.scale_std, Vec3::Constant(datasheet(ds, "accel_scale_factor_repeatability_ppm", 1e-6))));
+    EXPECT_TRUE(
+        same(g.accel.non_orthogonality_std, Vec3::Constant(datasheet(ds, "accel_non_orthogonality_urad", 1e-6))));
+  }
 }
 
 TEST(SimGrades, Hg1900IsTables6And7AndItsDatasheet) {
-  const ImuGrade g = imu_grade("hg1900-paper");
-  EXPECT_TRUE(same(g.gyro.white_N, row("table7_hg1900_gyro", "N_deg_sqrt_h", deg_sqrt_h)));
-  EXPECT_TRUE(same(g.gyro.instability_B, row("table7_hg1900_gyro", "B_deg_h", deg_h)));
-  EXPECT_TRUE(same(g.gyro.instability_T_s, row("table7_hg1900_gyro", "B_time_constant_s", 1.0)));
-  EXPECT_TRUE(same(g.gyro.rate_rw_K, row("table7_hg1900_gyro", "K_deg_h_sqrt_h", deg_h_sqrt_h)));
-  expect_absent(g.gyro, true, false, false, false, true, "hg1900 gyro");  // N + B + K
-  EXPECT_TRUE(same(g.accel.quantization_Q, row("table6_hg1900_accel", "Q_m_h", m_h)));
-  EXPECT_TRUE(same(g.accel.instability_B, row("table6_hg1900_accel", "B_mps_h", mps_h)));
-  EXPECT_TRUE(same(g.accel.instability_T_s, row("table6_hg1900_accel", "B_time_constant_s", 1.0)));
-  EXPECT_TRUE(same(g.accel.rate_rw_K, row("table6_hg1900_accel", "K_mps_h_sqrt_h", mps_h_sqrt_h)));
-  EXPECT_TRUE(same(g.accel.ramp_R, row("table6_hg1900_accel", "R_mps_h2", mps_h2)));  // Y: null -> absent
-  EXPECT_EQ(g.accel.ramp_R.y(), 0.0);
-  expect_absent(g.accel, false, true, false, false, false, "hg1900 accel");  // Q + B + K + R, N insignificant
-  const char* ds = "HG1900_CA29";
-  EXPECT_TRUE(same(g.gyro.turn_on_bias_std, Vec3::Constant(datasheet(ds, "gyro_bias_repeatability_deg_h", deg_h))));
-  EXPECT_TRUE(same(g.gyro.scale_std, Vec3::Constant(datasheet(ds, "gyro_scale_factor_linearity_ppm", 1e-6))));
-  EXPECT_TRUE(same(g.gyro.non_orthogonality_std, Vec3::Constant(datasheet(ds, "gyro_non_orthogonality_urad", 1e-6))));
-  EXPECT_TRUE(same(g.accel.turn_on_bias_std, Vec3::Constant(datasheet(ds, "accel_bias_repeatability_mg", mg))));
-  EXPECT_TRUE(same(g.accel.scale_std, Vec3::Constant(datasheet(ds, "accel_scale_factor_repeatability_ppm", 1e-6))));
-  EXPECT_TRUE(
-      same(g.accel.non_orthogonality_std, Vec3::Constant(datasheet(ds, "accel_non_orthogonality_urad", 1e-6))));
+  for (const char* name : {"hg1900", "hg1900-paper"}) {
+    SCOPED_TRACE(name);
+    const ImuGrade g = imu_grade(name);
+    EXPECT_EQ(g.name, name);
+    EXPECT_TRUE(same(g.gyro.white_N, row("table7_hg1900_gyro", "N_deg_sqrt_h", deg_sqrt_h)));
+    EXPECT_TRUE(same(g.gyro.instability_B, row("table7_hg1900_gyro", "B_deg_h", deg_h)));
+    EXPECT_TRUE(same(g.gyro.instability_T_s, row("table7_hg1900_gyro", "B_time_constant_s", 1.0)));
+    EXPECT_TRUE(same(g.gyro.rate_rw_K, row("table7_hg1900_gyro", "K_deg_h_sqrt_h", deg_h_sqrt_h)));
+    expect_absent(g.gyro, true, false, false, false, true, "hg1900 gyro");  // N + B + K
+    EXPECT_TRUE(same(g.accel.quantization_Q, row("table6_hg1900_accel", "Q_m_h", m_h)));
+    EXPECT_TRUE(same(g.accel.instability_B, row("table6_hg1900_accel", "B_mps_h", mps_h)));
+    EXPECT_TRUE(same(g.accel.instability_T_s, row("table6_hg1900_accel", "B_time_constant_s", 1.0)));
+    EXPECT_TRUE(same(g.accel.rate_rw_K, row("table6_hg1900_accel", "K_mps_h_sqrt_h", mps_h_sqrt_h)));
+    EXPECT_TRUE(same(g.accel.ramp_R, row("table6_hg1900_accel", "R_mps_h2", mps_h2)));  // Y: null -> absent
+    EXPECT_EQ(g.accel.ramp_R.y(), 0.0);
+    expect_absent(g.accel, false, true, false, false, false, "hg1900 accel");  // Q + B + K + R, N insignificant
+    const char* ds = "HG1900_CA29";
+    EXPECT_TRUE(same(g.gyro.turn_on_bias_std, Vec3::Constant(datasheet(ds, "gyro_bias_repeatability_deg_h", deg_h))));
+    EXPECT_TRUE(same(g.gyro.scale_std, Vec3::Constant(datasheet(ds, "gyro_scale_factor_linearity_ppm", 1e-6))));
+    EXPECT_TRUE(same(g.gyro.non_orthogonality_std, Vec3::Constant(datasheet(ds, "gyro_non_orthogonality_urad", 1e-6))));
+    EXPECT_TRUE(same(g.accel.turn_on_bias_std, Vec3::Constant(datasheet(ds, "accel_bias_repeatability_mg", mg))));
+    EXPECT_TRUE(same(g.accel.scale_std, Vec3::Constant(datasheet(ds, "accel_scale_factor_repeatability_ppm", 1e-6))));
+    EXPECT_TRUE(
+        same(g.accel.non_orthogonality_std, Vec3::Constant(datasheet(ds, "accel_non_orthogonality_urad", 1e-6))));
+  }
 }
 
 TEST(SimGrades, Gx2IsTables8And9WithQAsPrintedAndTheArcsecReadingBeside) {
-  for (const char* name : {"3dm-gx2-paper", "3dm-gx2-paper-q-arcsec"}) {
+  for (const char* name : {"3dm-gx2", "3dmgx2", "gx2", "3dm-gx2-paper", "3dm-gx2-q-arcsec", "3dm-gx2-paper-q-arcsec"}) {
     SCOPED_TRACE(name);
     const ImuGrade g = imu_grade(name);
-    const bool arcsec_reading = std::string(name) == "3dm-gx2-paper-q-arcsec";
+    const bool arcsec_reading = std::string(name).find("q-arcsec") != std::string::npos;
+    const bool alias = std::string(name) == "3dmgx2" || std::string(name) == "gx2";
+    EXPECT_EQ(g.name, alias ? std::string("3dm-gx2") : std::string(name));
     // Table 9 prints Q in degrees; the second grade reads the same numbers as arcsec.
     EXPECT_TRUE(same(g.gyro.quantization_Q, row("table9_3dm_gx2_gyro", "Q_deg", arcsec_reading ? arcsec : kPiDeg)));
     EXPECT_TRUE(same(g.gyro.white_N, row("table9_3dm_gx2_gyro", "N_deg_sqrt_h", deg_sqrt_h)));
@@ -145,10 +156,35 @@ TEST(SimGrades, Gx2IsTables8And9WithQAsPrintedAndTheArcsecReadingBeside) {
   }
 }
 
+TEST(SimGrades, TheTypicalStandInsExistBesideThePaperGrades) {
+  EXPECT_EQ(imu_grade_names(), (std::vector<std::string>{"perfect", "hg1700", "hg1900", "3dm-gx2", "3dm-gx2-q-arcsec",
+                                                         "hg1700-typical", "hg1900-typical", "3dm-gx2-typical"}));
+  for (const char* name : {"hg1700-typical", "hg1900-typical", "3dm-gx2-typical"}) {
+    SCOPED_TRACE(name);
+    const ImuGrade g = imu_grade(name);
+    EXPECT_EQ(g.name, name);
+    // Datasheet-level values with typical in-run terms on every axis, quantisation as ADC rounding.
+    for (const TriadErrorModel* t : {&g.gyro, &g.accel}) {
+      EXPECT_TRUE(t->quantization_rounding);
+      EXPECT_TRUE((t->white_N.array() > 0).all());
+      EXPECT_TRUE((t->instability_B.array() > 0).all());
+      EXPECT_TRUE((t->rate_rw_K.array() > 0).all());
+      EXPECT_TRUE((t->ramp_R.array() != 0).all());
+    }
+    EXPECT_EQ(builtin_grade_yaml(name), "");  // no file form
+  }
+  // Not the paper's: Table 5 identifies no bias instability of the HG1700 gyro; the typical grade has one.
+  EXPECT_TRUE(imu_grade("hg1700").gyro.instability_B.isZero());
+  EXPECT_FALSE(imu_grade("hg1700-typical").gyro.instability_B.isZero());
+}
+
 TEST(SimGrades, EveryBuiltInReadsBackFromItsPrintedYamlAndTheExampleLoads) {
-  for (const auto& name : imu_grade_names()) {
-    // The paper's grades have a file form; the stand-ins (hg1700, hg1900, 3dm-gx2) and perfect have none.
-    const bool paper = name.find("-paper") != std::string::npos;
+  std::vector<std::string> names = imu_grade_names();
+  for (const char* alias : {"hg1700-paper", "hg1900-paper", "3dm-gx2-paper", "3dm-gx2-paper-q-arcsec"})
+    names.push_back(alias);
+  for (const auto& name : names) {
+    // The paper's grades (and their -paper aliases) have a file form; perfect and the -typical stand-ins none.
+    const bool paper = name != "perfect" && name.find("-typical") == std::string::npos;
     const std::string text = builtin_grade_yaml(name);
     ASSERT_EQ(text.empty(), !paper) << name;
     if (!paper) continue;
@@ -209,13 +245,13 @@ TEST(SimGrades, BadGradeFilesNameTheFileTheLineAndTheKey) {
             std::string::npos);
   EXPECT_NE(input_error_of([] { imu_grade("hg2000"); })
                 .find("--grade: unknown IMU grade 'hg2000': expected one of perfect, hg1700, hg1900, 3dm-gx2, "
-                      "hg1700-paper, hg1900-paper, 3dm-gx2-paper, 3dm-gx2-paper-q-arcsec, or a grade YAML file"),
+                      "3dm-gx2-q-arcsec, hg1700-typical, hg1900-typical, 3dm-gx2-typical, or a grade YAML file"),
             std::string::npos);
 }
 
 TEST(SimGrades, TheKfGinsConfigTakesTheMeanCorrelationTimeOfTheAxesWithAB) {
   SimRequest r = perfect_request("static", 2.0);
-  for (const char* name : {"hg1700-paper", "hg1900-paper", "3dm-gx2-paper"}) {
+  for (const char* name : {"hg1700", "hg1900", "3dm-gx2"}) {
     r.grade = name;
     const SimResult s = simulate(r);
     const ImuGrade g = imu_grade(name);
@@ -233,12 +269,12 @@ TEST(SimGrades, TheKfGinsConfigTakesTheMeanCorrelationTimeOfTheAxesWithAB) {
     EXPECT_LT((*s.kfgins.init_gyro_bias_std_rad_s -
                (g.gyro.turn_on_bias_std.cwiseAbs2() + gb.cwiseAbs2()).cwiseSqrt()).norm(), 1e-15) << name;
   }
-  EXPECT_NEAR(simulate([&] { r.grade = "hg1700-paper"; return r; }()).kfgins.imu_noise.corr_time_s, 160.0, 1e-9);
+  EXPECT_NEAR(simulate([&] { r.grade = "hg1700"; return r; }()).kfgins.imu_noise.corr_time_s, 160.0, 1e-9);
 }
 
 TEST(SimGrades, TheDrawnNonOrthogonalityIsInTheAnswerKey) {
   SimRequest r = perfect_request("static", 2.0);
-  r.grade = "hg1900-paper";
+  r.grade = "hg1900";
   const SimResult s = simulate(r);
   ASSERT_TRUE(s.injected_effects.count("gyro_misalignment"));
   ASSERT_TRUE(s.injected_effects.count("accel_misalignment"));
@@ -246,6 +282,6 @@ TEST(SimGrades, TheDrawnNonOrthogonalityIsInTheAnswerKey) {
     EXPECT_NE(m, 0.0);
     EXPECT_LT(std::abs(m), 5 * 200e-6);
   }
-  r.grade = "3dm-gx2-paper";  // no non-orthogonality printed: none drawn
+  r.grade = "3dm-gx2";  // no non-orthogonality printed: none drawn
   EXPECT_FALSE(simulate(r).injected_effects.count("gyro_misalignment"));
 }

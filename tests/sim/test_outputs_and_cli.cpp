@@ -41,7 +41,7 @@ Cmd run_ldv(const std::string& args) {
 TEST(SimOutputs, KfGinsFilesAndConfigReadBackAndMatchTheTruth) {
   // Given a run written to a directory
   SimRequest q;
-  q.grade = "hg1700";
+  q.grade = "hg1700-typical";
   q.scenario = "turns";
   q.duration_s = 60;
   q.effects = {"lever_arm=0.2,0.1,-1"};
@@ -112,7 +112,7 @@ TEST(SimOutputs, RtklibPosHasRtklibsLayout) {
 
 TEST(SimCli, ContractRunWritesTheKfGinsSet) {
   const fs::path dir = temp_dir("cli_ok");
-  const Cmd c = run_ldv("--grade hg1900 --seed 5 --duration 20 --scenario stops --imu-rate 100 --gnss-rate 5 "
+  const Cmd c = run_ldv("--grade hg1900-typical --seed 5 --duration 20 --scenario stops --imu-rate 100 --gnss-rate 5 "
                         "--effect lever_arm --effect gyro_bias=1,2,3 --outages 5:3 --quiet --out " + dir.string());
   ASSERT_EQ(c.exit_code, 0) << c.output;
   for (const char* f : {"imu.txt", "gnss.txt", "truth.nav", "kfgins.yaml"}) EXPECT_TRUE(fs::exists(dir / f)) << f;
@@ -127,7 +127,7 @@ TEST(SimCli, BadOptionsFailWithTheFieldNamedAndWriteNothing) {
   };
   const std::vector<Case> cases = {
       {"--grade hg2000", "--grade: unknown IMU grade 'hg2000': expected one of perfect, hg1700, hg1900, 3dm-gx2, "
-                         "hg1700-paper, hg1900-paper, 3dm-gx2-paper, 3dm-gx2-paper-q-arcsec, or a grade YAML file"},
+                         "3dm-gx2-q-arcsec, hg1700-typical, hg1900-typical, 3dm-gx2-typical, or a grade YAML file"},
       {"--grade /nonexistent/my_imu.yaml", "--grade: cannot read the grade file"},
       {"--effect lever_arm=1,2", "effect 'lever_arm': expected 3 comma-separated values [m,m,m], found 2"},
       {"--outages 10-20", "--outages: expected START:LENGTH[,START:LENGTH...] in seconds, found '10-20'"},
@@ -158,7 +158,7 @@ TEST(SimOutputs, AFailedWriteLeavesNoPartialDirectory) {
 
 TEST(SimCli, AGradeFileRunsAndABadOneNamesFileLineAndKey) {
   // --print-grade gives a built-in in the file form; that file as --grade runs; a typo is named with its line.
-  const Cmd printed = run_ldv("--print-grade hg1900-paper");
+  const Cmd printed = run_ldv("--print-grade hg1900");
   ASSERT_EQ(printed.exit_code, 0) << printed.output;
   EXPECT_NE(printed.output.find("K_deg_h_sqrt_h: [2.18, 3.126, 1.846]"), std::string::npos) << printed.output;
   const std::string file = write_text("cli_grade.yaml", printed.output);
@@ -168,7 +168,17 @@ TEST(SimCli, AGradeFileRunsAndABadOneNamesFileLineAndKey) {
   ASSERT_EQ(ok.exit_code, 0) << ok.output;
   EXPECT_EQ(read_kfgins_imu((dir / "imu.txt").string()).size(), 500u);
   const YAML::Node cfg = YAML::LoadFile((dir / "kfgins.yaml").string());
-  EXPECT_EQ(cfg["ldv"]["simulator"]["grade"].as<std::string>(), "hg1900-paper");
+  EXPECT_EQ(cfg["ldv"]["simulator"]["grade"].as<std::string>(), "hg1900");
+  // The -paper alias prints the same grade under its own name; a -typical stand-in has no file form.
+  const Cmd alias = run_ldv("--print-grade hg1900-paper");
+  ASSERT_EQ(alias.exit_code, 0) << alias.output;
+  EXPECT_EQ(alias.output.substr(alias.output.find('\n')), printed.output.substr(printed.output.find('\n')));
+  const Cmd typical = run_ldv("--print-grade hg1900-typical");
+  EXPECT_EQ(typical.exit_code, 2) << typical.output;
+  EXPECT_NE(typical.output.find("--print-grade: no file form of the grade 'hg1900-typical': expected one of hg1700, "
+                                "hg1900, 3dm-gx2, 3dm-gx2-q-arcsec"),
+            std::string::npos)
+      << typical.output;
 
   const std::string bad = write_text("cli_bad_grade.yaml", "name: mine\naccel:\n  N_mps_sqrt_h: 0.1\n  K_mps_h_sqr_h: 1\n");
   const fs::path none = temp_dir("cli_bad_grade_out");

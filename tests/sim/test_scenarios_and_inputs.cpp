@@ -140,7 +140,7 @@ TEST(SimScenarios, BadRequestOptionsNameTheOption) {
 TEST(SimScenarios, SameSeedSameDataOtherSeedOtherData) {
   auto run = [](uint64_t seed) {
     SimRequest q;
-    q.grade = "hg1900";
+    q.grade = "hg1900-typical";
     q.scenario = "figure8";
     q.duration_s = 60;
     q.seed = seed;

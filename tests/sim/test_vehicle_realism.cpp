@@ -50,9 +50,9 @@ TEST(SimImuLatency, ImuTagsAreTheTrueSampleTimePlusTheLatencyAndTruthStaysOnTrue
 }
 
 TEST(SimImuLatency, CrossCorrelationOfGyroWithTrueYawRateFindsTheLatency) {
-  // Given a noisy hg1700 on turns with an IMU latency of 0.137 s
+  // Given a noisy hg1700-typical on turns with an IMU latency of 0.137 s
   SimRequest q = perfect_request("turns", 120.0, 200.0);
-  q.grade = "hg1700";
+  q.grade = "hg1700-typical";
   q.with_noise = true;
   q.vehicle.imu_latency_s = 0.137;
   const SimResult r = simulate(q);
@@ -256,7 +256,7 @@ TEST(SimGnssOutliers, RateSizeAndFlagsAsDefined) {
 
 TEST(SimRealism, VehiclePresetTurnsEverythingOnRecordsItAndWritesADatasheetConfig) {
   SimRequest q = perfect_request("drive", 60.0, 100.0);
-  q.grade = "hg1700";
+  q.grade = "hg1700-typical";
   q.with_noise = true;
   q.seed = 9;
   q.vehicle.realism = "vehicle";
@@ -296,7 +296,7 @@ TEST(SimRealism, VehiclePresetTurnsEverythingOnRecordsItAndWritesADatasheetConfi
 TEST(SimRealism, NoneChangesNothing) {
   SimRequest q = perfect_request("drive", 30.0, 100.0);
   q.with_noise = true;
-  q.grade = "hg1900";
+  q.grade = "hg1900-typical";
   const SimResult a = simulate(q);
   q.vehicle.realism = "none";
   const SimResult b = simulate(q);

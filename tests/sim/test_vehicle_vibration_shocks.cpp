@@ -14,7 +14,7 @@ using namespace ldv::sim::test;
 namespace {
 constexpr double kDegPerSqrtH = kDegToRad / 60.0;
 
-// A grade with white noise only (hg1700's ARW and VRW), so the increments' spread is white noise alone.
+// A grade with white noise only (hg1700-typical's ARW and VRW), so the increments' spread is white noise alone.
 ImuGrade white_only_grade() {
   ImuGrade g;
   g.name = "white-only";

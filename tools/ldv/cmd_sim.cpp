@@ -105,8 +105,9 @@ void run(SimOptions& o, const CLI::App& cmd) {
       std::string names;
       for (const auto& n : sim::imu_grade_names())
         if (!sim::builtin_grade_yaml(n).empty()) names += (names.empty() ? "" : ", ") + n;
-      throw InputError("--print-grade", 0, "no file form of the grade '" + o.print_grade + "': expected one of " + names +
-                                               " (the paper's grades; hg1700, hg1900 and 3dm-gx2 are the stand-ins)");
+      throw InputError("--print-grade", 0,
+                       "no file form of the grade '" + o.print_grade + "': expected one of " + names +
+                           " (the paper's grades; perfect and the -typical stand-ins have no file form)");
     }
     std::fputs(text.c_str(), stdout);
     return;
@@ -142,9 +143,10 @@ void add_sim_command(CLI::App& app) {
   auto& r = opts->req;
   r.scenario = "drive";
   cmd->add_option("--grade", r.grade,
-                  "IMU grade: perfect | hg1700 | hg1900 | 3dm-gx2 (the stand-ins) | hg1700-paper | hg1900-paper | "
-                  "3dm-gx2-paper | 3dm-gx2-paper-q-arcsec (the paper's Tables 4-9), or a grade YAML file in the "
-                  "paper's units (sim/README.md; --print-grade NAME shows the keys)")
+                  "IMU grade: perfect | hg1700 | hg1900 | 3dm-gx2 | 3dm-gx2-q-arcsec (the paper's Tables 4-9; "
+                  "aliases hg1700-paper, hg1900-paper, 3dm-gx2-paper, 3dm-gx2-paper-q-arcsec) | hg1700-typical | "
+                  "hg1900-typical | 3dm-gx2-typical (datasheet stand-ins with typical in-run terms), or a grade YAML "
+                  "file in the paper's units (sim/README.md; --print-grade NAME shows the keys)")
       ->capture_default_str();
   cmd->add_option("--seed", r.seed, "random seed (same seed, same data)")->capture_default_str();
   cmd->add_option("--duration", r.duration_s, "run length [s]")->capture_default_str();
