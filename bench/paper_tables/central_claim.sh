@@ -26,6 +26,7 @@
 # docs/paper_central_claim.md is its output plus the explanations (bench/paper_tables/central_claim_notes.md).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+source bench/paper_tables/static_record.sh
 LDV="${1:-build/bin/ldv}"
 OUT="${2:-out/paper_central_claim}"
 PAPER="${LDV_PAPER_TABLES:-../shared/data/paper/geo_ldv_tables.yaml}"
@@ -50,10 +51,7 @@ for spec in hg1700-paper:57600:100 hg1900-paper:57600:100 3dm-gx2-paper:18000:20
   else
     record="$OUT/static/$grade"
     echo "== $grade: simulating $((duration / 3600)) h static at $rate Hz (seed $STATIC_SEED)" >&2
-    rm -rf "$record"
-    "${RUN[@]}" sim --grade "$grade" --seed "$STATIC_SEED" --duration "$duration" --scenario static --imu-rate "$rate" \
-      --gnss-rate 1 --quiet --out "$record"
-    (cd "$record" && rm -f truth.nav device_schedule.txt imu_device.bin gnss.nmea gnss.pos gnss.txt truth_errors.txt)
+    simulate_static_record "$record" "$grade" "$STATIC_SEED" "$duration" "$rate" "${RUN[@]}"
   fi
   echo "   ldv allan --noise-config" >&2
   "${RUN[@]}" allan "$record/imu.txt" --noise-config "$dir/allan_noise.yaml" --json "$dir/allan.json" \

@@ -12,6 +12,7 @@
 # docs/paper_tables4_9.md is its output plus the explanations (bench/paper_tables/tables4_9_notes.md).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+source bench/paper_tables/static_record.sh
 LDV="${1:-build/bin/ldv}"
 OUT="${2:-out/paper_tables4_9}"
 PAPER="${LDV_PAPER_TABLES:-../shared/data/paper/geo_ldv_tables.yaml}"
@@ -20,10 +21,7 @@ mkdir -p "$OUT"
 for spec in hg1700-paper:57600:100 hg1900-paper:57600:100 3dm-gx2-paper:18000:20 3dm-gx2-paper-q-arcsec:18000:20; do
   IFS=: read -r grade duration rate <<< "$spec"
   echo "== $grade: simulating $((duration / 3600)) h static at $rate Hz (seed $SEED)" >&2
-  rm -rf "$OUT/$grade"
-  "$LDV" sim --grade "$grade" --seed "$SEED" --duration "$duration" --scenario static --imu-rate "$rate" \
-    --gnss-rate 1 --quiet --out "$OUT/$grade"
-  (cd "$OUT/$grade" && rm -f truth.nav device_schedule.txt imu_device.bin gnss.nmea gnss.pos gnss.txt truth_errors.txt)
+  simulate_static_record "$OUT/$grade" "$grade" "$SEED" "$duration" "$rate" "$LDV"
   echo "   ldv allan (bias model by BIC)" >&2
   "$LDV" allan "$OUT/$grade/imu.txt" --json "$OUT/$grade.json" > "$OUT/$grade.txt" 2> "$OUT/$grade.log"
   echo "   ldv allan --gauss-markov" >&2
