@@ -139,7 +139,7 @@ void print_tables(std::FILE* out, const std::vector<ChannelResult>& results) {
       const EngineeringUnit un = paper_unit(q, Term::kN);
       std::fprintf(out, "  intervals: N's includes %.3g %s (1 sigma) from the uncertainty of the Q it holds%s\n",
                    r.n_sigma_from_held_q * un.from_si, un.name,
-                   r.k_interval_spans_both_bias_models ? "; K's spans both bias models' (BIC's choice was close)" : "");
+                   r.k_interval_spans_both_bias_models ? "; N's and K's span both bias models' (BIC's choice was close)" : "");
     }
     if (r.information) {
       const RecordInformation& info = *r.information;
@@ -203,6 +203,7 @@ void write_json(const std::string& path, const std::string& input, const std::ve
           << "_modelled\": " << (t.in_model ? "true" : "false");
       }
       o << ",\n      \"N_sigma_from_held_Q\": " << num(r.n_sigma_from_held_q)
+        << ", \"N_interval_spans_both_bias_models\": " << (r.n_interval_spans_both_bias_models ? "true" : "false")
         << ", \"K_interval_spans_both_bias_models\": " << (r.k_interval_spans_both_bias_models ? "true" : "false");
       o << ",\n      \"B_tau_s\": " << num(f.b_tau_s) << ", \"B_model\": " << quoted(gm ? "gauss_markov" : "flat")
         << ", \"B_T_s\": " << num(gm ? f[ModelTerm::kGaussMarkov].shape : 0.0)

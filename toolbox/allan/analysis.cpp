@@ -165,13 +165,16 @@ ChannelResult analyze_channel(const PhaseSeries& s, const AnalysisOptions& opt) 
         const double z = math::normal_quantile(0.5 + 0.5 * fo.interval_confidence);
         r.n_sigma_from_held_q = r.likelihood->n_sigma_from_held_q;
         if (r.n_sigma_from_held_q > 0.0) widen((*r.fit)[ModelTerm::kN], r.n_sigma_from_held_q, z);
-        TermEstimate& k = (*r.fit)[ModelTerm::kK];
-        if (other_model && k.in_model && (*other_model)[ModelTerm::kK].in_model) {
-          const TermEstimate& k_other = (*other_model)[ModelTerm::kK];
-          k.lo = std::min(k.lo, k_other.lo);
-          k.hi = std::max(k.hi, k_other.hi);
-          r.k_interval_spans_both_bias_models = true;
-        }
+        // A close choice: N's and K's intervals span both models' (each term is in both).
+        const auto span_both = [&](ModelTerm term) {
+          TermEstimate& t = (*r.fit)[term];
+          if (!other_model || !t.in_model || !(*other_model)[term].in_model) return false;
+          t.lo = std::min(t.lo, (*other_model)[term].lo);
+          t.hi = std::max(t.hi, (*other_model)[term].hi);
+          return true;
+        };
+        r.n_interval_spans_both_bias_models = span_both(ModelTerm::kN);
+        r.k_interval_spans_both_bias_models = span_both(ModelTerm::kK);
         try {
           r.information = record_information(*r.fit, s.tau0_s, r.samples, fo.likelihood_block_s, fo.target_precision);
         } catch (const std::invalid_argument& e) {

@@ -72,8 +72,9 @@ struct ChannelResult {
   // What the likelihood fit's intervals carry beyond its own Fisher information (README.md, "Intervals"):
   // N's 1-sigma from the uncertainty of the Q it holds, added in quadrature to N's sigma and interval;
   double n_sigma_from_held_q = 0.0;
-  // and, when BIC's choice of the bias model was close (close_bias_model_bic), K's interval spans both
-  // models' (K is in both; the flat B and the GM sigma are different quantities and keep their own).
+  // and, when BIC's choice of the bias model was close (close_bias_model_bic), N's and K's intervals span both
+  // models' (each is in both; the flat B and the GM sigma are different quantities and keep their own).
+  bool n_interval_spans_both_bias_models = false;
   bool k_interval_spans_both_bias_models = false;
 };
 

@@ -46,9 +46,12 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
 // Cramer-Rao bound of the likelihood fit: the expected 1-sigma of each term a sensor with these
 // noise levels has, relative to its value, from `samples` samples at tau0 (the expected Fisher
 // information of the tapered Whittle likelihood, the information the raw record holds). Terms at 0
-// are not in the model and get 0; Q is held, R is not a density (0). `gm_t` is the relative sd of T.
+// are not in the model and get 0; R is not a density (0). `gm_t` is the relative sd of T.
 struct RelativeBounds {
   double n = 0.0, b = 0.0, k = 0.0, gm_sigma = 0.0, gm_t = 0.0;
+  // Q's bound with Q free (the fit holds it at the curve fit's value, which cannot do better); the other terms'
+  // bounds stay at Q held, as the fit has them. Pass block_s = tau0 for the information of the raw samples.
+  double q = 0.0;
 };
 RelativeBounds whittle_cramer_rao(const NoiseLevels& truth, double tau0_s, long samples, double block_s);
 
