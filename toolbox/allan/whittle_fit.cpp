@@ -415,28 +415,22 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
   if (!sol.c.allFinite() || !std::isfinite(sol.log_likelihood)) {
     throw std::invalid_argument("likelihood fit: no finite maximum (the curve fit is kept)");
   }
-  // A Gauss-Markov term the data do not support is refitted away and reported absent (value 0, the upper end
-  // of its interval from its information at its T): pulled to its shortest T it is white noise in the blocks
-  // (density 2 sigma^2 T) and folds into N; at any T, when the fit without it is not worse by the likelihood
-  // ratio's 95 % point for its two parameters (sigma, T), it only takes variance from the terms beside it
-  // (forced on the paper's HG1700 gyro, which has no bias term, it took N 1-4 % low over 20 seeds, 3-6x N's
-  // bound).
+  // A Gauss-Markov term still pulled to its shortest T is white noise in the blocks (density
+  // 2 sigma^2 T): fold it into N by refitting without it, and report it absent (value 0, T at the
+  // bound, the upper end of its interval from its information there).
   const double gm_t_min = gm_min_time_constant(p.tau_b);
   bool gm_folded = false;
-  double gm_folded_sigma_c = 0.0, gm_folded_t_s = 0.0;
-  if (gm_index >= 0 && sol.c(gm_index) > 0) {
-    const bool at_min_t = mod.gm_t_s <= gm_t_min * 1.02 &&
-                          std::find(mod.terms.begin(), mod.terms.end(), ModelTerm::kN) != mod.terms.end();
+  double gm_folded_sigma_c = 0.0;
+  if (gm_index >= 0 && sol.c(gm_index) > 0 && mod.gm_t_s <= gm_t_min * 1.02 &&
+      std::find(mod.terms.begin(), mod.terms.end(), ModelTerm::kN) != mod.terms.end()) {
     Model without = mod;
     without.terms.erase(without.terms.begin() + gm_index);
     Eigen::VectorXd start_without(without.terms.size());
     for (int j = 0, i = 0; j < static_cast<int>(mod.terms.size()); ++j)
       if (j != gm_index) start_without(i++) = std::max(sol.c(j), start(j));
-    Solution folded = without.terms.empty() ? Solution{} : maximise(without, p, start_without, -1);
-    const double likelihood_ratio = 2.0 * (sol.log_likelihood - folded.log_likelihood) / p.taper.variance_factor;
-    if ((at_min_t || likelihood_ratio < math::chi_square_quantile(0.95, 2.0)) && folded.c.allFinite() && std::isfinite(folded.log_likelihood)) {
-      gm_folded_t_s = at_min_t ? gm_t_min : mod.gm_t_s;
-      mod.gm_t_s = gm_folded_t_s;
+    Solution folded = maximise(without, p, start_without, -1);
+    if (folded.c.allFinite() && std::isfinite(folded.log_likelihood)) {
+      mod.gm_t_s = gm_t_min;
       set_densities(mod, p);
       Eigen::VectorXd c_full(mod.terms.size());
       for (int j = 0, i = 0; j < static_cast<int>(mod.terms.size()); ++j) c_full(j) = j == gm_index ? 0.0 : folded.c(i++);
@@ -549,10 +543,10 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
     t.resolved =
         sol.c(j) > 2.0 * std::max(sigma_c[j], sigma_free[j]) && dominant_somewhere(mod.terms[j], sol.c(j), t.shape);
   }
-  if (gm_folded) {  // refitted away: absent, with only an upper end to its interval
+  if (gm_folded) {  // folded into N: absent, with only an upper end to its interval
     TermEstimate& t = out[ModelTerm::kGaussMarkov];
     t.in_model = true;
-    t.shape = gm_folded_t_s;
+    t.shape = gm_t_min;
     t.shape_sigma = 0.0;
     set_term_interval(t, 0.0, gm_folded_sigma_c, z);
     t.resolved = false;
