@@ -72,6 +72,18 @@ void expect_absent(const TriadErrorModel& m, bool Q, bool N, bool B, bool K, boo
 }
 }  // namespace
 
+namespace {
+// Table 3's run-to-run constants of a Honeywell grade (both datasheets print the same six figures).
+void expect_honeywell_datasheet(const ImuGrade& g, const char* ds) {
+  EXPECT_TRUE(same(g.gyro.turn_on_bias_std, Vec3::Constant(datasheet(ds, "gyro_bias_repeatability_deg_h", deg_h))));
+  EXPECT_TRUE(same(g.gyro.scale_std, Vec3::Constant(datasheet(ds, "gyro_scale_factor_linearity_ppm", 1e-6))));
+  EXPECT_TRUE(same(g.gyro.non_orthogonality_std, Vec3::Constant(datasheet(ds, "gyro_non_orthogonality_urad", 1e-6))));
+  EXPECT_TRUE(same(g.accel.turn_on_bias_std, Vec3::Constant(datasheet(ds, "accel_bias_repeatability_mg", mg))));
+  EXPECT_TRUE(same(g.accel.scale_std, Vec3::Constant(datasheet(ds, "accel_scale_factor_repeatability_ppm", 1e-6))));
+  EXPECT_TRUE(same(g.accel.non_orthogonality_std, Vec3::Constant(datasheet(ds, "accel_non_orthogonality_urad", 1e-6))));
+}
+}  // namespace
+
 TEST(SimGrades, Hg1700IsTables4And5AndItsDatasheet) {
   for (const char* name : {"hg1700", "hg1700-paper"}) {
     SCOPED_TRACE(name);
@@ -86,14 +98,7 @@ TEST(SimGrades, Hg1700IsTables4And5AndItsDatasheet) {
     EXPECT_TRUE(same(g.accel.instability_T_s, row("table4_hg1700_accel", "B_time_constant_s", 1.0)));
     EXPECT_TRUE(same(g.accel.rate_rw_K, row("table4_hg1700_accel", "K_mps_h_sqrt_h", mps_h_sqrt_h)));
     expect_absent(g.accel, false, false, false, false, true, "hg1700 accel");  // Q + N + B + K
-    const char* ds = "HG1700_AG58";
-    EXPECT_TRUE(same(g.gyro.turn_on_bias_std, Vec3::Constant(datasheet(ds, "gyro_bias_repeatability_deg_h", deg_h))));
-    EXPECT_TRUE(same(g.gyro.scale_std, Vec3::Constant(datasheet(ds, "gyro_scale_factor_linearity_ppm", 1e-6))));
-    EXPECT_TRUE(same(g.gyro.non_orthogonality_std, Vec3::Constant(datasheet(ds, "gyro_non_orthogonality_urad", 1e-6))));
-    EXPECT_TRUE(same(g.accel.turn_on_bias_std, Vec3::Constant(datasheet(ds, "accel_bias_repeatability_mg", mg))));
-    EXPECT_TRUE(same(g.accel.scale_std, Vec3::Constant(datasheet(ds, "accel_scale_factor_repeatability_ppm", 1e-6))));
-    EXPECT_TRUE(
-        same(g.accel.non_orthogonality_std, Vec3::Constant(datasheet(ds, "accel_non_orthogonality_urad", 1e-6))));
+    expect_honeywell_datasheet(g, "HG1700_AG58");
   }
 }
 
@@ -114,14 +119,7 @@ TEST(SimGrades, Hg1900IsTables6And7AndItsDatasheet) {
     EXPECT_TRUE(same(g.accel.ramp_R, row("table6_hg1900_accel", "R_mps_h2", mps_h2)));  // Y: null -> absent
     EXPECT_EQ(g.accel.ramp_R.y(), 0.0);
     expect_absent(g.accel, false, true, false, false, false, "hg1900 accel");  // Q + B + K + R, N insignificant
-    const char* ds = "HG1900_CA29";
-    EXPECT_TRUE(same(g.gyro.turn_on_bias_std, Vec3::Constant(datasheet(ds, "gyro_bias_repeatability_deg_h", deg_h))));
-    EXPECT_TRUE(same(g.gyro.scale_std, Vec3::Constant(datasheet(ds, "gyro_scale_factor_linearity_ppm", 1e-6))));
-    EXPECT_TRUE(same(g.gyro.non_orthogonality_std, Vec3::Constant(datasheet(ds, "gyro_non_orthogonality_urad", 1e-6))));
-    EXPECT_TRUE(same(g.accel.turn_on_bias_std, Vec3::Constant(datasheet(ds, "accel_bias_repeatability_mg", mg))));
-    EXPECT_TRUE(same(g.accel.scale_std, Vec3::Constant(datasheet(ds, "accel_scale_factor_repeatability_ppm", 1e-6))));
-    EXPECT_TRUE(
-        same(g.accel.non_orthogonality_std, Vec3::Constant(datasheet(ds, "accel_non_orthogonality_urad", 1e-6))));
+    expect_honeywell_datasheet(g, "HG1900_CA29");
   }
 }
 
