@@ -78,7 +78,7 @@ TEST(AllanIntervals, GivenAQuantisationOverTheWhiteNoise_ThenNsIntervalCarriesTh
   EXPECT_LT(sigma, 1.6 * scatter);
 }
 
-TEST(AllanIntervals, GivenAGaussMarkovBiasBelowTheRateRandomWalk_ThenKsIntervalSpansBothBiasModels) {
+TEST(AllanIntervals, GivenAGaussMarkovBiasBelowTheRateRandomWalk_ThenNsAndKsIntervalsSpanBothBiasModels) {
   // Like the paper's HG1900 accelerometer Y: K's Allan deviation above the GM's even at the GM's peak.
   SensorTruth t;
   t.n = 1e-4;
@@ -86,7 +86,7 @@ TEST(AllanIntervals, GivenAGaussMarkovBiasBelowTheRateRandomWalk_ThenKsIntervalS
   t.gm_sigma = 2e-5;
   t.k = 2.0 * t.gm_sigma / std::sqrt(t.gm_t_s);
   const int seeds = 8;
-  int spanned = 0, held = 0;
+  int spanned = 0, held = 0, n_held = 0;
   for (int seed = 1; seed <= seeds; ++seed) {
     const ChannelResult r = analyse(simulate_rate(t, 0.02, 360000, 77 + seed), 0.02);  // 2 h at 50 Hz
     ASSERT_TRUE(r.fit && r.bias_model);
@@ -98,8 +98,14 @@ TEST(AllanIntervals, GivenAGaussMarkovBiasBelowTheRateRandomWalk_ThenKsIntervalS
     std::printf("seed %d: %s (dBIC %.1f), K/true %.3f, interval [%.3f, %.3f]%s\n", seed, c.chosen.c_str(), margin,
                 k.value / t.k, k.lo / t.k, k.hi / t.k, r.k_interval_spans_both_bias_models ? " spans both models" : "");
     EXPECT_EQ(r.k_interval_spans_both_bias_models, std::abs(margin) < close_bias_model_bic(c.observations));
+    // N's interval spans both models' on the same close calls, and the union still holds the true N.
+    const TermEstimate& n = (*r.fit)[ModelTerm::kN];
+    EXPECT_EQ(r.n_interval_spans_both_bias_models, r.k_interval_spans_both_bias_models);
+    n_held += t.n >= n.lo && t.n <= n.hi;
   }
-  std::printf("K's interval holds the truth in %d of %d records, %d spanning both bias models\n", held, seeds, spanned);
+  std::printf("K's interval holds the truth in %d of %d records, %d spanning both bias models; N's in %d\n", held,
+              seeds, spanned, n_held);
   EXPECT_GT(spanned, 0) << "the case this test is about";
   EXPECT_GE(held, seeds - 1);
+  EXPECT_GE(n_held, seeds - 1);
 }
