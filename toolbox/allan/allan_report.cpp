@@ -5,7 +5,9 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 #include <tuple>
+#include <vector>
 
 #include "common/formats/kfgins_config.hpp"
 #include "common/io/output_file.hpp"
@@ -135,12 +137,20 @@ void print_tables(std::FILE* out, const std::vector<ChannelResult>& results) {
       std::fprintf(out, "  sine amplitude %.5g %s at %.5g Hz (%s)\n", sine.value, r.unit.c_str(), sine.shape,
                    sine.resolved ? "resolved" : "not resolved");
     }
-    if (r.n_sigma_from_held_q > 0.0 || r.k_interval_spans_both_bias_models) {
+    std::vector<std::string> widened;  // what the intervals carry beyond the fit's own information
+    if (r.n_sigma_from_held_q > 0.0) {
       const EngineeringUnit un = paper_unit(q, Term::kN);
-      std::fprintf(out, "  intervals: N's includes %.3g %s (1 sigma) from the uncertainty of the Q it holds%s\n",
-                   r.n_sigma_from_held_q * un.from_si, un.name,
-                   r.k_interval_spans_both_bias_models ? "; N's and K's span both bias models' (BIC's choice was close)" : "");
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "N's includes %.3g %s (1 sigma) from the uncertainty of the Q it holds",
+                    r.n_sigma_from_held_q * un.from_si, un.name);
+      widened.push_back(buf);
     }
+    const bool n_both = r.n_interval_spans_both_bias_models, k_both = r.k_interval_spans_both_bias_models;
+    if (n_both || k_both)
+      widened.push_back(std::string(n_both && k_both ? "N's and K's span" : n_both ? "N's spans" : "K's spans") +
+                        " both bias models' (BIC's choice was close)");
+    for (size_t i = 0; i < widened.size(); ++i)
+      std::fprintf(out, "%s%s%s", i ? "; " : "  intervals: ", widened[i].c_str(), i + 1 == widened.size() ? "\n" : "");
     if (r.information) {
       const RecordInformation& info = *r.information;
       const bool gm = f[ModelTerm::kGaussMarkov].in_model;
