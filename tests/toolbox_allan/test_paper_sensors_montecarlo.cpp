@@ -1,4 +1,4 @@
-// Issue 14's study at the paper's record lengths (LABEL montecarlo, about 25 min on 2 cores): 20 seeds of each
+// Issue 14's study at the paper's record lengths (LABEL montecarlo, about 35 min on 2 cores): 20 seeds of each
 // of the paper's sensors (Tables 4-9 as the built-in grades), 16 h at 100 Hz for the HG1700 and HG1900, 5 h at
 // 20 Hz for the 3DM-GX2 (both readings of its gyro Q). `ldv allan`'s default analysis (bias model by BIC) and
 // the paper's forced Gauss-Markov, each judged by the issue's criteria: Q and N within 3 %, GM sigma and T
