@@ -51,8 +51,9 @@ inline std::vector<AxisTruth> axes_of(const sim::ImuGrade& g) {
     for (int i = 0; i < 3; ++i) {
       AxisTruth a;
       a.channel = std::string(sensor == 0 ? "gyro_" : "accel_") + xyz[i];
-      a.value = {m.quantization_Q[i], m.white_N[i], m.instability_B[i],
-                 m.instability_B[i] > 0 ? m.instability_T_s[i] : 0.0, m.rate_rw_K[i], std::fabs(m.ramp_R[i])};
+      a.value = {m.quantization_Q[i], m.white_N[i],
+                 m.instability_B[i],  m.instability_B[i] > 0 ? m.instability_T_s[i] : 0.0,
+                 m.rate_rw_K[i],      std::fabs(m.ramp_R[i])};
       axes.push_back(a);
     }
   }
@@ -102,7 +103,7 @@ struct TermTally {
   int judged = 0, within = 0, covered = 0, resolved_absent = 0, absent_judged = 0;
   double rel_err_sq = 0.0;
   double reported_rel_sigma_sum = 0.0;  // the fit's own relative 1-sigma, summed over the judged seeds
-  double crb = 0.0;  // relative 1-sigma the record allows (0: not a density the bound covers)
+  double crb = 0.0;                     // relative 1-sigma the record allows (0: not a density the bound covers)
   double rms() const { return judged ? std::sqrt(rel_err_sq / judged) : 0.0; }
   // The precision to judge reachability by: the Cramer-Rao bound; for R (not a density, no bound) the fit's own
   // sigma (the variance of the differences' mean under the other terms).
@@ -122,17 +123,28 @@ inline bool estimate_of(const NoiseFit& f, PaperTerm t, double& value, double& l
   const auto& gm = f[ModelTerm::kGaussMarkov];
   const TermEstimate* e = nullptr;
   switch (t) {
-    case PaperTerm::kQ: e = &f[ModelTerm::kQ]; break;
-    case PaperTerm::kN: e = &f[ModelTerm::kN]; break;
-    case PaperTerm::kK: e = &f[ModelTerm::kK]; break;
-    case PaperTerm::kR: e = &f[ModelTerm::kR]; break;
-    case PaperTerm::kGmSigma: e = &gm; break;
+    case PaperTerm::kQ:
+      e = &f[ModelTerm::kQ];
+      break;
+    case PaperTerm::kN:
+      e = &f[ModelTerm::kN];
+      break;
+    case PaperTerm::kK:
+      e = &f[ModelTerm::kK];
+      break;
+    case PaperTerm::kR:
+      e = &f[ModelTerm::kR];
+      break;
+    case PaperTerm::kGmSigma:
+      e = &gm;
+      break;
     case PaperTerm::kGmT:
       if (!gm.in_model) return false;
       value = gm.shape, lo = gm.shape - 1.96 * gm.shape_sigma, hi = gm.shape + 1.96 * gm.shape_sigma;
       resolved = gm.resolved;
       return true;
-    default: return false;
+    default:
+      return false;
   }
   if (!e->in_model) return false;
   value = e->value, lo = e->lo, hi = e->hi, resolved = e->resolved;
