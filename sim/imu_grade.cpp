@@ -327,9 +327,8 @@ ImuGrade gx2() {
 // ---- The named grades (`hg1700`, `hg1900`, `3dm-gx2`, `3dm-gx2-q-arcsec`): the paper's Tables 4-9 per axis as
 // printed (absent terms absent), the turn-on bias, scale and non-orthogonality from Table 3's datasheets.
 // tests/sim/test_grades.cpp checks every number against ../shared/data/paper/geo_ldv_tables.yaml. ----
-std::string hg1700_text(const std::string& name) {
-  return "name: " + name + "\n" +
-         R"YAML(source: "Moafipoor et al. Table 5 (gyro Q+N) and Table 4 (accel Q+N+B+K) per axis; turn-on bias, scale and non-orthogonality from Table 3 (Honeywell HG1700-AG58 datasheet)"
+// Each body without its `name:` line (builtin_text adds the name asked for).
+const char* kHg1700Body = R"YAML(source: "Moafipoor et al. Table 5 (gyro Q+N) and Table 4 (accel Q+N+B+K) per axis; turn-on bias, scale and non-orthogonality from Table 3 (Honeywell HG1700-AG58 datasheet)"
 gyro:                           # Table 5: Q + N (no B, K, R identified)
   Q_arcsec: [6.360, 7.853, 16.687]
   N_deg_sqrt_h: [0.041, 0.037, 0.045]
@@ -346,11 +345,8 @@ accel:                          # Table 4: Q + N + B + K
   scale_ppm: 300                # Table 3: scale factor repeatability
   non_orthogonality_urad: 100   # Table 3
 )YAML";
-}
 
-std::string hg1900_text(const std::string& name) {
-  return "name: " + name + "\n" +
-         R"YAML(source: "Moafipoor et al. Table 7 (gyro N+B+K) and Table 6 (accel Q+B+K+R) per axis; turn-on bias, scale and non-orthogonality from Table 3 (Honeywell HG1900-CA29 datasheet)"
+const char* kHg1900Body = R"YAML(source: "Moafipoor et al. Table 7 (gyro N+B+K) and Table 6 (accel Q+B+K+R) per axis; turn-on bias, scale and non-orthogonality from Table 3 (Honeywell HG1900-CA29 datasheet)"
 gyro:                           # Table 7: N + B + K
   N_deg_sqrt_h: [0.045, 0.054, 0.04]
   B_deg_h: [0.514, 0.551, 0.421]
@@ -369,7 +365,6 @@ accel:                          # Table 6: Q + B + K + R (N "insignificant, 0.00
   scale_ppm: 300                # Table 3: scale factor repeatability
   non_orthogonality_urad: 100   # Table 3
 )YAML";
-}
 
 // The 3DM-GX2: Table 9 prints the gyro Q in degrees (0.18-0.23). `3dm-gx2` takes it as printed; `3dm-gx2-q-arcsec`
 // reads the same numbers as arcsec (what a 16-bit converter of the +-300 deg/s range gives: an LSB of 0.0092
@@ -401,11 +396,10 @@ accel:                          # Table 8: Q + N + B + K
 // The paper's grades by name; the `-paper` names (and `3dmgx2`, `gx2`) are aliases. A `-paper` alias keeps the
 // name asked for; `3dmgx2` and `gx2` are named `3dm-gx2`.
 std::string builtin_text(const std::string& name) {
-  if (name == "hg1700" || name == "hg1700-paper") return hg1700_text(name);
-  if (name == "hg1900" || name == "hg1900-paper") return hg1900_text(name);
-  if (name == "3dm-gx2" || name == "3dmgx2" || name == "gx2")
-    return gx2_text("3dm-gx2", "Q_deg", "Q in degrees as printed");
-  if (name == "3dm-gx2-paper") return gx2_text(name, "Q_deg", "Q in degrees as printed");
+  if (name == "hg1700" || name == "hg1700-paper") return "name: " + name + "\n" + kHg1700Body;
+  if (name == "hg1900" || name == "hg1900-paper") return "name: " + name + "\n" + kHg1900Body;
+  if (name == "3dm-gx2" || name == "3dm-gx2-paper" || name == "3dmgx2" || name == "gx2")
+    return gx2_text(name == "3dm-gx2-paper" ? name : "3dm-gx2", "Q_deg", "Q in degrees as printed");
   if (name == "3dm-gx2-q-arcsec" || name == "3dm-gx2-paper-q-arcsec")
     return gx2_text(name, "Q_arcsec", "the printed Q read as arcsec instead of degrees");
   return "";

@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -118,37 +119,25 @@ struct AxisTally {
   const TermTally& operator[](PaperTerm t) const { return term[static_cast<int>(t)]; }
 };
 
-// Value and interval of one paper term in a fit; false when the fit does not carry it (flat B chosen).
-inline bool estimate_of(const NoiseFit& f, PaperTerm t, double& value, double& lo, double& hi, bool& resolved) {
-  const auto& gm = f[ModelTerm::kGaussMarkov];
-  const TermEstimate* e = nullptr;
-  switch (t) {
-    case PaperTerm::kQ:
-      e = &f[ModelTerm::kQ];
-      break;
-    case PaperTerm::kN:
-      e = &f[ModelTerm::kN];
-      break;
-    case PaperTerm::kK:
-      e = &f[ModelTerm::kK];
-      break;
-    case PaperTerm::kR:
-      e = &f[ModelTerm::kR];
-      break;
-    case PaperTerm::kGmSigma:
-      e = &gm;
-      break;
-    case PaperTerm::kGmT:
-      if (!gm.in_model) return false;
-      value = gm.shape, lo = gm.shape - 1.96 * gm.shape_sigma, hi = gm.shape + 1.96 * gm.shape_sigma;
-      resolved = gm.resolved;
-      return true;
-    default:
-      return false;
+struct TermReading {
+  double value = 0.0, sigma = 0.0, lo = 0.0, hi = 0.0;
+  bool resolved = false;
+};
+
+// One paper term as the fit reports it; empty when the fit does not carry it (flat B chosen).
+inline std::optional<TermReading> reading_of(const NoiseFit& f, PaperTerm t) {
+  const TermEstimate& gm = f[ModelTerm::kGaussMarkov];
+  if (t == PaperTerm::kGmT) {  // T is the GM term's shape; its interval at the others' 95 %
+    if (!gm.in_model) return std::nullopt;
+    const double z = 1.96;
+    return TermReading{gm.shape, gm.shape_sigma, gm.shape - z * gm.shape_sigma, gm.shape + z * gm.shape_sigma,
+                       gm.resolved};
   }
-  if (!e->in_model) return false;
-  value = e->value, lo = e->lo, hi = e->hi, resolved = e->resolved;
-  return true;
+  static const ModelTerm kModelTerm[] = {ModelTerm::kQ,           ModelTerm::kN, ModelTerm::kGaussMarkov,
+                                         ModelTerm::kGaussMarkov, ModelTerm::kK, ModelTerm::kR};
+  const TermEstimate& e = f[kModelTerm[static_cast<int>(t)]];
+  if (!e.in_model) return std::nullopt;
+  return TermReading{e.value, e.sigma, e.lo, e.hi, e.resolved};
 }
 
 // An absent bias shows as resolved in either bias term.
@@ -164,23 +153,20 @@ inline void tally(AxisTally& a, const ChannelResult& r) {
   for (int i = 0; i < static_cast<int>(PaperTerm::kCount); ++i) {
     const auto t = static_cast<PaperTerm>(i);
     const double truth = a.truth[t];
-    double value = 0, lo = 0, hi = 0;
-    bool resolved = false;
-    const bool carried = estimate_of(f, t, value, lo, hi, resolved);
-    const double reported_sigma = t == PaperTerm::kR ? f[ModelTerm::kR].sigma : 0.0;
+    const std::optional<TermReading> seen = reading_of(f, t);
     TermTally& tt = a[t];
     if (truth <= 0) {  // absent in the paper's table: never resolved
       if (t == PaperTerm::kGmT) continue;
       ++tt.absent_judged;
-      tt.resolved_absent += t == PaperTerm::kGmSigma ? any_bias_resolved(f) : (carried && resolved);
+      tt.resolved_absent += t == PaperTerm::kGmSigma ? any_bias_resolved(f) : (seen && seen->resolved);
       continue;
     }
-    if (!carried) continue;
+    if (!seen) continue;
     ++tt.judged;
-    tt.within += std::fabs(value / truth - 1) <= tolerance(t);
-    tt.covered += lo <= truth && truth <= hi;
-    tt.rel_err_sq += std::pow(value / truth - 1, 2);
-    tt.reported_rel_sigma_sum += reported_sigma / truth;
+    tt.within += std::fabs(seen->value / truth - 1) <= tolerance(t);
+    tt.covered += seen->lo <= truth && truth <= seen->hi;
+    tt.rel_err_sq += std::pow(seen->value / truth - 1, 2);
+    if (t == PaperTerm::kR) tt.reported_rel_sigma_sum += seen->sigma / truth;  // R's precision (no bound)
   }
 }
 
@@ -193,7 +179,7 @@ inline void set_bounds(AxisTally& a, double tau0_s, long samples, double block_s
   a[PaperTerm::kN].crb = b.n, a[PaperTerm::kK].crb = b.k;
   a[PaperTerm::kGmSigma].crb = b.gm_sigma, a[PaperTerm::kGmT].crb = b.gm_t;
   // Q lives at the shortest tau: its bound from the raw samples (Q is taken from the Allan curve, which has them).
-  if (levels.q > 0) a[PaperTerm::kQ].crb = whittle_cramer_rao(levels, tau0_s, samples, tau0_s).q;
+  if (levels.q > 0) a[PaperTerm::kQ].crb = whittle_cramer_rao(levels, tau0_s, samples, tau0_s, true).q;
 }
 
 // A tolerance met in 90 % of seeds needs a relative 1-sigma of tolerance / 1.645 (normal errors).

@@ -570,7 +570,8 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
   return out;
 }
 
-RelativeBounds whittle_cramer_rao(const NoiseLevels& truth, double tau0_s, long samples, double block_s) {
+RelativeBounds whittle_cramer_rao(const NoiseLevels& truth, double tau0_s, long samples, double block_s,
+                                  bool bound_q) {
   const long m = std::max(1L, std::lround(block_s / tau0_s));
   Periodogram p;
   p.tau_b = m * tau0_s;
@@ -609,7 +610,7 @@ RelativeBounds whittle_cramer_rao(const NoiseLevels& truth, double tau0_s, long 
     if (double* slot = bound_slot(out, mod.terms[j])) *slot = rel;
   }
   if (gm_index >= 0) out.gm_t = std::sqrt(std::max(0.0, cov(c.size(), c.size())));
-  if (truth.q > 0) {  // Q free: its unit density as one more parameter, no prior
+  if (bound_q && truth.q > 0) {  // Q free: its unit density as one more parameter, no prior
     const Eigen::VectorXd q_unit_density = mod.fixed / (truth.q * truth.q);
     const Eigen::MatrixXd cov_q = fisher_covariance(mod, p, cv, all, gm_index, &q_unit_density);
     const long last = cov_q.rows() - 1;

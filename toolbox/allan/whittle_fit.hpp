@@ -49,11 +49,13 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
 // are not in the model and get 0; R is not a density (0). `gm_t` is the relative sd of T.
 struct RelativeBounds {
   double n = 0.0, b = 0.0, k = 0.0, gm_sigma = 0.0, gm_t = 0.0;
-  // Q's bound with Q free (the fit holds it at the curve fit's value, which cannot do better); the other terms'
-  // bounds stay at Q held, as the fit has them. Pass block_s = tau0 for the information of the raw samples.
+  // Q's bound with Q free (the fit holds it at the curve fit's value, which cannot do better), only with
+  // `bound_q`; the other terms' bounds stay at Q held, as the fit has them. Pass block_s = tau0 for the
+  // information of the raw samples.
   double q = 0.0;
 };
-RelativeBounds whittle_cramer_rao(const NoiseLevels& truth, double tau0_s, long samples, double block_s);
+RelativeBounds whittle_cramer_rao(const NoiseLevels& truth, double tau0_s, long samples, double block_s,
+                                  bool bound_q = false);
 
 // What a record of this sensor tells about its terms, taking the fit as the truth: the bound now
 // and the record length [h] at which each resolved term reaches `target` (relative 1-sigma);
