@@ -127,11 +127,9 @@ struct TermReading {
 // One paper term as the fit reports it; empty when the fit does not carry it (flat B chosen).
 inline std::optional<TermReading> reading_of(const NoiseFit& f, PaperTerm t) {
   const TermEstimate& gm = f[ModelTerm::kGaussMarkov];
-  if (t == PaperTerm::kGmT) {  // T is the GM term's shape; its interval at the others' 95 %
+  if (t == PaperTerm::kGmT) {  // T is the GM term's shape, its interval from its profile likelihood
     if (!gm.in_model) return std::nullopt;
-    const double z = 1.96;
-    return TermReading{gm.shape, gm.shape_sigma, gm.shape - z * gm.shape_sigma, gm.shape + z * gm.shape_sigma,
-                       gm.resolved};
+    return TermReading{gm.shape, gm.shape_sigma, gm.shape_lo, gm.shape_hi, gm.resolved};
   }
   static const ModelTerm kModelTerm[] = {ModelTerm::kQ,           ModelTerm::kN, ModelTerm::kGaussMarkov,
                                          ModelTerm::kGaussMarkov, ModelTerm::kK, ModelTerm::kR};

@@ -51,12 +51,15 @@ const TermEstimate& reported(const NoiseFit& f, ModelTerm mt) {
 std::string model_label(const std::string& m) { return m == "gauss_markov" ? "Gauss-Markov" : "flat B"; }
 
 void print_bias_model(std::FILE* out, const BiasModelChoice& c) {
-  if (c.criterion == "BIC") {
-    std::fprintf(out, "  bias model: %s, chosen by BIC (flat B: lnL %.6g, %d parameters, BIC %.6g; Gauss-Markov: lnL %.6g, "
-                 "%d parameters, BIC %.6g; likelihood ratio %.3g, %ld ordinates)\n",
-                 model_label(c.chosen).c_str(), c.flat.log_likelihood, c.flat.parameters, c.flat.bic,
-                 c.gauss_markov.log_likelihood, c.gauss_markov.parameters, c.gauss_markov.bic, c.likelihood_ratio,
-                 c.observations);
+  if (c.criterion == "AIC") {
+    // The criteria's differences, not their values: at millions of ordinates the values agree to 7 digits.
+    std::fprintf(out,
+                 "  bias model: %s, chosen by AIC: likelihood ratio %.3g for the Gauss-Markov (%d parameters, the flat B "
+                 "%d); AIC flat - GM %.3g, BIC flat - GM %.3g (%ld ordinates); the Gauss-Markov %s\n",
+                 model_label(c.chosen).c_str(), c.likelihood_ratio, c.gauss_markov.parameters, c.flat.parameters,
+                 c.flat.aic - c.gauss_markov.aic, c.flat.bic - c.gauss_markov.bic, c.observations,
+                 c.gauss_markov_stands_out ? "stands out"
+                                           : "does not stand out (sigma's interval reaches 0 or T's the white bound)");
   } else if (c.requested == "auto") {
     std::fprintf(out, "  bias model: %s, not chosen by the data (%s)\n", model_label(c.chosen).c_str(), c.note.c_str());
   } else {
@@ -112,8 +115,12 @@ void print_tables(std::FILE* out, const std::vector<ChannelResult>& results) {
       const TermEstimate* curve = r.curve_fit ? &reported(*r.curve_fit, mt) : nullptr;
       std::string extra;
       if (mt == ModelTerm::kB && f[ModelTerm::kGaussMarkov].in_model) {
-        char buf[64];
-        std::snprintf(buf, sizeof buf, "  (Gauss-Markov, T = %.4g s)", t->shape);
+        char buf[96];
+        if (t->shape_hi > 0.0)
+          std::snprintf(buf, sizeof buf, "  (Gauss-Markov, T = %.4g s, 95%% [%.4g, %.4g])", t->shape, t->shape_lo,
+                        t->shape_hi);
+        else
+          std::snprintf(buf, sizeof buf, "  (Gauss-Markov, T = %.4g s)", t->shape);
         extra = buf;
       } else if (mt == ModelTerm::kB) {
         char buf[64];
@@ -148,7 +155,7 @@ void print_tables(std::FILE* out, const std::vector<ChannelResult>& results) {
     const bool n_both = r.n_interval_spans_both_bias_models, k_both = r.k_interval_spans_both_bias_models;
     if (n_both || k_both)
       widened.push_back(std::string(n_both && k_both ? "N's and K's span" : n_both ? "N's spans" : "K's spans") +
-                        " both bias models' (BIC's choice was close)");
+                        " both bias models' (the models are close: |BIC flat - GM| < ln n)");
     for (size_t i = 0; i < widened.size(); ++i)
       std::fprintf(out, "%s%s%s", i ? "; " : "  intervals: ", widened[i].c_str(), i + 1 == widened.size() ? "\n" : "");
     if (r.information) {
@@ -217,7 +224,9 @@ void write_json(const std::string& path, const std::string& input, const std::ve
         << ", \"K_interval_spans_both_bias_models\": " << (r.k_interval_spans_both_bias_models ? "true" : "false");
       o << ",\n      \"B_tau_s\": " << num(f.b_tau_s) << ", \"B_model\": " << quoted(gm ? "gauss_markov" : "flat")
         << ", \"B_T_s\": " << num(gm ? f[ModelTerm::kGaussMarkov].shape : 0.0)
-        << ", \"B_T_s_sigma\": " << num(gm ? f[ModelTerm::kGaussMarkov].shape_sigma : 0.0);
+        << ", \"B_T_s_sigma\": " << num(gm ? f[ModelTerm::kGaussMarkov].shape_sigma : 0.0)
+        << ", \"B_T_s_lo\": " << num(gm ? f[ModelTerm::kGaussMarkov].shape_lo : 0.0)
+        << ", \"B_T_s_hi\": " << num(gm ? f[ModelTerm::kGaussMarkov].shape_hi : 0.0);
       if (r.bias_model) {  // how B_model was chosen (README.md, "Bias model")
         const BiasModelChoice& bm = *r.bias_model;
         o << ",\n      \"bias_model_selection\": {\"requested\": " << quoted(bm.requested)
@@ -225,9 +234,11 @@ void write_json(const std::string& path, const std::string& input, const std::ve
           << ", \"note\": " << quoted(bm.note);
         if (bm.flat.fitted || !bm.flat.error.empty() || bm.gauss_markov.fitted || !bm.gauss_markov.error.empty()) {
           o << ", \"observations\": " << bm.observations << ", \"taper_variance_factor\": " << num(bm.taper_variance_factor);
-          if (bm.criterion == "BIC") {
+          if (bm.criterion == "AIC") {
             o << ", \"likelihood_ratio\": " << num(bm.likelihood_ratio)
-              << ", \"delta_bic\": " << num(bm.flat.bic - bm.gauss_markov.bic);
+              << ", \"delta_aic\": " << num(bm.flat.aic - bm.gauss_markov.aic)
+              << ", \"delta_bic\": " << num(bm.flat.bic - bm.gauss_markov.bic)
+              << ", \"gauss_markov_stands_out\": " << (bm.gauss_markov_stands_out ? "true" : "false");
           }
           o << ", \"flat\": " << candidate_json(bm.flat) << ", \"gauss_markov\": " << candidate_json(bm.gauss_markov);
         }

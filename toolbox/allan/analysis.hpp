@@ -38,11 +38,13 @@ struct BiasModelCandidate {
 
 // How the bias model (flat B or Gauss-Markov) was chosen. With FitOptions::choose_bias_model (the
 // default) and rate input with the likelihood fit, both models are fitted to the same periodogram
-// and the lower BIC wins (ties: the flat B, which has one parameter fewer); otherwise the model asked
-// for (or the flat B when the likelihood fit does not run) and `note` says why.
+// and the lower AIC wins when the GM stands out (its sigma's interval excludes 0, its T's stays off the
+// white-noise bound); ties and a GM that does not stand out: the flat B, one parameter fewer. Otherwise
+// the model asked for (or the flat B when the likelihood fit does not run) and `note` says why.
 struct BiasModelChoice {
   std::string requested;  // "auto" | "flat" | "gauss_markov"
-  std::string criterion;  // "BIC" when chosen by the data, else "none"
+  std::string criterion;  // "AIC" when chosen by the data, else "none"
+  bool gauss_markov_stands_out = false;  // (criterion "AIC") the GM fit's sigma and T are apart from 0 and white
   std::string chosen;     // "flat" | "gauss_markov"
   std::string note;       // why not chosen by the data ("" when it was)
   long observations = 0;  // periodogram ordinates: the n of the BIC

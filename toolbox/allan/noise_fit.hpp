@@ -44,6 +44,9 @@ struct TermEstimate {
   bool resolved = false;   // significant (> 2 sigma in variance) and dominant somewhere in tau
   double shape = 0.0;      // GM time constant T [s] / sinusoid frequency [Hz]
   double shape_sigma = 0.0;  // its 1-sigma uncertainty
+  // The GM T's interval at FitOptions::interval_confidence, from its profile likelihood (likelihood fit
+  // only; 0 and 0 otherwise).
+  double shape_lo = 0.0, shape_hi = 0.0;
 };
 
 struct SlopeLine {

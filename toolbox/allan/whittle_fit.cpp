@@ -214,6 +214,17 @@ double golden_section_max(const F& f, double a, double z, int iterations, double
   return f1 > f2 ? x1 : x2;
 }
 
+// The range of ln T searched. The Gauss-Markov hump sits at 1.89 T: T up to a third of the record; from
+// below, T is bounded at a few blocks (gm_min_time_constant, noise_fit.hpp: shorter, the term is white in
+// the blocks).
+struct LnTRange {
+  double lo = 0.0, hi = 0.0;
+};
+LnTRange gm_search_range(const Periodogram& p) {
+  const double lo = std::log(gm_min_time_constant(p.tau_b));
+  return {lo, std::max(lo, std::log(p.blocks * p.tau_b / 3.0))};
+}
+
 // Profile likelihood over ln T: a log grid, then golden section around its best point.
 Solution maximise(Model& mod, const Periodogram& p, const Eigen::VectorXd& start, int gm_index) {
   if (gm_index < 0) {
@@ -225,10 +236,7 @@ Solution maximise(Model& mod, const Periodogram& p, const Eigen::VectorXd& start
     set_densities(mod, p);
     return maximise_at_fixed_shape(mod, p, start);
   };
-  // The Gauss-Markov hump sits at 1.89 T: T up to a third of the record; from below, T is bounded
-  // at a few blocks (gm_min_time_constant, noise_fit.hpp: shorter, the term is white in the blocks).
-  const double lo = std::log(gm_min_time_constant(p.tau_b)),
-               hi = std::max(lo, std::log(p.blocks * p.tau_b / 3.0));
+  const auto [lo, hi] = gm_search_range(p);
   const int grid = 24;
   const double step = (hi - lo) / (grid - 1);
   double best_ln = lo, best_l = -std::numeric_limits<double>::infinity();
@@ -280,9 +288,44 @@ Eigen::MatrixXd fisher_covariance(const Model& mod, const Periodogram& p, const 
   return p.taper.variance_factor * scale.cwiseInverse().asDiagonal() * cov * scale.cwiseInverse().asDiagonal();
 }
 
+// Likelihood-ratio interval of the Gauss-Markov T (ln T in `range`): the hull of every T whose profile (the
+// maximum over the coefficients at that T) is within `drop` of the maximum. A weak GM's profile is flat or has
+// two humps; the Fisher sigma at the higher hump then says nothing about the other (the paper's HG1900 gyros:
+// T inside T +- 1.96 sigma in 9-13 of 20 records). Ends at the search range when the profile never falls that far.
+LnTRange time_constant_interval(const Model& mod, const Periodogram& p, const Solution& best, double drop,
+                                LnTRange range) {
+  Model at_t = mod;
+  const double target = best.log_likelihood - drop;
+  auto above = [&](double ln_t) {
+    at_t.gm_t_s = std::exp(ln_t);
+    set_densities(at_t, p);
+    return maximise_at_fixed_shape(at_t, p, best.c).log_likelihood >= target;
+  };
+  const double ln_best = std::log(mod.gm_t_s);
+  const int grid = 48;
+  const double step = (range.hi - range.lo) / (grid - 1);
+  LnTRange hull{ln_best, ln_best};
+  for (int g = 0; g < grid; ++g) {
+    const double x = range.lo + g * step;
+    if (above(x)) hull.lo = std::min(hull.lo, x), hull.hi = std::max(hull.hi, x);
+  }
+  auto bisect = [&](double inside, double outside) {
+    for (int it = 0; it < 12; ++it) {
+      const double mid = 0.5 * (inside + outside);
+      (above(mid) ? inside : outside) = mid;
+    }
+    return 0.5 * (inside + outside);
+  };
+  // From the outermost grid point above the target to the next one out (or to the estimate itself).
+  const double lo_out = std::max(range.lo, std::min(hull.lo, ln_best) - step),
+               hi_out = std::min(range.hi, std::max(hull.hi, ln_best) + step);
+  return {above(lo_out) ? lo_out : bisect(hull.lo, lo_out), above(hi_out) ? hi_out : bisect(hull.hi, hi_out)};
+}
+
 // Profile likelihood of term j's squared coefficient: the maximum over the other terms (and the
-// Gauss-Markov T, searched within a factor e of its estimate) with c_j held at cj.
-double profile_log_likelihood(const Model& mod, const Periodogram& p, const Solution& best, int j, double cj) {
+// Gauss-Markov T, searched over `ln_t`, its own interval a little widened) with c_j held at cj.
+double profile_log_likelihood(const Model& mod, const Periodogram& p, const Solution& best, int j, double cj,
+                              LnTRange ln_t) {
   Model sub;
   std::vector<int> others;
   for (int i = 0; i < static_cast<int>(mod.terms.size()); ++i) {
@@ -303,9 +346,17 @@ double profile_log_likelihood(const Model& mod, const Periodogram& p, const Solu
   };
   const double ln_t0 = std::log(std::max(mod.gm_t_s, 1e-300));
   if (!has_gm) return at(ln_t0);
+  // A coarse grid first: over a wide interval the profile in T can have two humps.
+  const int grid = std::clamp(static_cast<int>(std::ceil((ln_t.hi - ln_t.lo) / 0.5)) + 1, 2, 12);
+  const double step = (ln_t.hi - ln_t.lo) / (grid - 1);
+  double best_ln = ln_t0, best_l = at(ln_t0);
+  for (int g = 0; g < grid; ++g) {
+    const double x = ln_t.lo + g * step, l = at(x);
+    if (l > best_l) best_l = l, best_ln = x;
+  }
   double l_searched = 0.0;
-  golden_section_max(at, std::max(ln_t0 - 1.0, std::log(gm_min_time_constant(p.tau_b))), ln_t0 + 1.0, 12, &l_searched);
-  return std::max(l_searched, at(ln_t0));
+  golden_section_max(at, std::max(ln_t.lo, best_ln - step), std::min(ln_t.hi, best_ln + step), 10, &l_searched);
+  return std::max(l_searched, best_l);
 }
 
 // Likelihood-ratio interval of c_j: where the profile falls `drop` (chi2_1 quantile / 2) below
@@ -313,9 +364,9 @@ double profile_log_likelihood(const Model& mod, const Periodogram& p, const Solu
 // information about a variance is evaluated at that variance), which matters for a term seen
 // in a handful of ordinates, like K in a few hours of a tactical gyro.
 std::pair<double, double> profile_interval(const Model& mod, const Periodogram& p, const Solution& best, int j,
-                                           double drop, double sigma_c) {
+                                           double drop, double sigma_c, LnTRange ln_t) {
   const double target = best.log_likelihood - drop;
-  auto below = [&](double c) { return profile_log_likelihood(mod, p, best, j, c) < target; };
+  auto below = [&](double c) { return profile_log_likelihood(mod, p, best, j, c, ln_t) < target; };
   const double c0 = best.c(j) > 0 ? best.c(j) : std::max(sigma_c, 1e-300);
   auto bisect = [&](double inside, double outside) {  // in ln c
     for (int it = 0; it < 14; ++it) {
@@ -460,6 +511,16 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
     return false;
   };
   const double z = math::normal_quantile(0.5 + 0.5 * opt.interval_confidence);
+  // The tapered likelihood is sharper than the information it holds by the taper's variance factor.
+  const double drop = 0.5 * z * z * p.taper.variance_factor;
+  // T's interval from its profile, and the others' profiles search T over it (widened by a quarter in ln T).
+  LnTRange t_interval{std::log(std::max(mod.gm_t_s, 1e-300)), std::log(std::max(mod.gm_t_s, 1e-300))};
+  LnTRange t_search = t_interval;
+  if (gm_index >= 0 && sol.c(gm_index) > 0) {
+    const LnTRange range = gm_search_range(p);
+    t_interval = time_constant_interval(mod, p, sol, drop, range);
+    t_search = {std::max(range.lo, t_interval.lo - 0.25), std::min(range.hi, t_interval.hi + 0.25)};
+  }
   std::vector<int> active, all;
   for (int j = 0; j < sol.c.size(); ++j) {
     all.push_back(j);
@@ -484,15 +545,18 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
     t.in_model = true;
     t.shape = mod.terms[j] == ModelTerm::kGaussMarkov ? mod.gm_t_s : 0.0;
     t.shape_sigma = 0.0;
+    t.shape_lo = t.shape_hi = 0.0;
     set_term_interval(t, sol.c(j), sigma_c[j], z);
-    // The tapered likelihood is sharper than the information it holds by the taper's variance factor.
-    const auto [lo, hi] = profile_interval(mod, p, sol, j, 0.5 * z * z * p.taper.variance_factor, sigma_c[j]);
+    const auto [lo, hi] = profile_interval(mod, p, sol, j, drop, sigma_c[j], t_search);
     t.lo = std::sqrt(lo);
     t.hi = std::sqrt(hi);
   }
   if (gm_index >= 0 && sol.c(gm_index) > 0) {
     const long last = static_cast<long>(active.size());
-    out[ModelTerm::kGaussMarkov].shape_sigma = mod.gm_t_s * std::sqrt(std::max(0.0, cov_active(last, last)));
+    TermEstimate& gm = out[ModelTerm::kGaussMarkov];
+    gm.shape_sigma = mod.gm_t_s * std::sqrt(std::max(0.0, cov_active(last, last)));
+    gm.shape_lo = std::exp(t_interval.lo);
+    gm.shape_hi = std::exp(t_interval.hi);
   }
   // Q is held at the curve fit's value, and N shares the high frequencies with it: N's variance with c_Q = Q^2
   // free under the curve fit's uncertainty (sd 2 Q sigma_Q) minus N's variance at Q held, as a sigma of N.
@@ -548,6 +612,7 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
     t.in_model = true;
     t.shape = gm_t_min;
     t.shape_sigma = 0.0;
+    t.shape_lo = t.shape_hi = 0.0;
     set_term_interval(t, 0.0, gm_folded_sigma_c, z);
     t.resolved = false;
   }
