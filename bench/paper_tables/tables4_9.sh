@@ -3,7 +3,7 @@
 # `ldv allan` on simulated static records of the paper's lengths (16 h at 100 Hz for the HG1700 and HG1900, 5 h at
 # 20 Hz for the 3DM-GX2, its Section 4.2) made by `ldv sim --scenario static` with the *-paper grades (Tables 4-9 as
 # printed; the 3DM-GX2 twice: gyro Q in degrees as printed, and read as arcsec). Each record is analysed twice: as
-# `ldv allan` does by default (N, B, K, R by the likelihood of the raw data, the bias model chosen by BIC) and with
+# `ldv allan` does by default (N, B, K, R by the likelihood of the raw data, the bias model chosen by AIC) and with
 # the bias forced to the paper's Gauss-Markov (sigma, T). Every term recovered beside the paper's number, read from
 # ../shared/data/paper/geo_ldv_tables.yaml, with the ratio.
 #   bench/paper_tables/tables4_9.sh [LDV [OUT_DIR]]      (about 4 min on 2 cores; writes OUT_DIR/tables4_9.md)
@@ -22,7 +22,7 @@ for spec in hg1700-paper:57600:100 hg1900-paper:57600:100 3dm-gx2-paper:18000:20
   IFS=: read -r grade duration rate <<< "$spec"
   echo "== $grade: simulating $((duration / 3600)) h static at $rate Hz (seed $SEED)" >&2
   simulate_static_record "$OUT/$grade" "$grade" "$SEED" "$duration" "$rate" "$LDV"
-  echo "   ldv allan (bias model by BIC)" >&2
+  echo "   ldv allan (bias model by AIC)" >&2
   "$LDV" allan "$OUT/$grade/imu.txt" --json "$OUT/$grade.json" > "$OUT/$grade.txt" 2> "$OUT/$grade.log"
   echo "   ldv allan --gauss-markov" >&2
   "$LDV" allan "$OUT/$grade/imu.txt" --gauss-markov --json "$OUT/$grade.gm.json" \

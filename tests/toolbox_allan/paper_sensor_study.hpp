@@ -3,7 +3,7 @@
 // per axis, read by the simulator's grade parser) at chosen record lengths, over seeds. Each seed simulates the
 // six error channels of a static record through the simulator's IMU error model (the same code `ldv sim` runs;
 // a static record's true increments only add constants, which the analysis removes), then analyses them as
-// `ldv allan` does by default (bias model chosen by BIC) and with the paper's Gauss-Markov bias forced.
+// `ldv allan` does by default (bias model chosen by AIC) and with the paper's Gauss-Markov bias forced.
 // Per axis and term it counts: value within the tolerance, truth inside the reported 95 % interval, and
 // for terms the paper did not identify, "resolved" (must never happen). Beside each term: the Cramer-Rao bound
 // of the record (whittle_cramer_rao with the true levels), which says whether a tolerance is reachable.

@@ -9,7 +9,7 @@ using namespace ldv::allan::test;
 
 TEST(PaperSensors, Gx2AsPrintedFiveHoursThreeSeedsMeetTheCriteriaTheRecordAllows) {
   const PaperStudy s = run_paper_study("3dm-gx2-paper", 5.0, 20.0, 3, 101);
-  print_study(s, "default (bias model by BIC)", s.by_default);
+  print_study(s, "default (bias model by AIC)", s.by_default);
   print_study(s, "--gauss-markov", s.gauss_markov);
   expect_paper_criteria(s, s.by_default, "default", 2.0 / 3.0);
   expect_paper_criteria(s, s.gauss_markov, "--gauss-markov", 2.0 / 3.0);

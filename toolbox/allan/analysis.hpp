@@ -44,13 +44,14 @@ struct BiasModelCandidate {
 struct BiasModelChoice {
   std::string requested;  // "auto" | "flat" | "gauss_markov"
   std::string criterion;  // "AIC" when chosen by the data, else "none"
-  bool gauss_markov_stands_out = false;  // (criterion "AIC") the GM fit's sigma and T are apart from 0 and white
   std::string chosen;     // "flat" | "gauss_markov"
   std::string note;       // why not chosen by the data ("" when it was)
   long observations = 0;  // periodogram ordinates: the n of the BIC
   double taper_variance_factor = 1.0;
   // 2 (lnL_gm - lnL_flat) / taper factor: the likelihood-ratio statistic (> 0 favours the GM)
   double likelihood_ratio = 0.0;
+  // (criterion "AIC") the GM fit's sigma interval excludes 0 and its T's stays off the white-noise bound
+  bool gauss_markov_stands_out = false;
   BiasModelCandidate flat, gauss_markov;
 };
 
@@ -74,15 +75,16 @@ struct ChannelResult {
   // What the likelihood fit's intervals carry beyond its own Fisher information (README.md, "Intervals"):
   // N's 1-sigma from the uncertainty of the Q it holds, added in quadrature to N's sigma and interval;
   double n_sigma_from_held_q = 0.0;
-  // and, when BIC's choice of the bias model was close (close_bias_model_bic), N's and K's intervals span both
-  // models' (each is in both; the flat B and the GM sigma are different quantities and keep their own).
+  // and, when the bias models are close in BIC (close_bias_model_bic; whichever AIC took), N's and K's intervals
+  // span both models' (each is in both; the flat B and the GM sigma are different quantities and keep their own).
   bool n_interval_spans_both_bias_models = false;
   bool k_interval_spans_both_bias_models = false;
 };
 
-// BIC's margin below which the choice of the bias model is close: one parameter's penalty, ln(ordinates) (the
-// flat B then wins although the GM fits as well or better: on the paper's HG1900 the GM's K is right and the flat
-// B's 7-9 % high, outside its own interval), and at least 6 (Kass & Raftery 1995: below 6, "positive" at most).
+// BIC's margin below which the choice of the bias model is close: one parameter's penalty, ln(ordinates) (BIC
+// then took the flat B although the GM fits as well or better: on the paper's HG1900 the GM's K is right and the
+// flat B's 7-9 % high, outside its own interval), and at least 6 (Kass & Raftery 1995: below 6, "positive" at
+// most). AIC chooses the model since; this margin still says when both models' N and K intervals are plausible.
 double close_bias_model_bic(long observations);
 
 // Averaging factors for a channel: explicit taus rounded to whole samples (std::invalid_argument

@@ -21,7 +21,7 @@ struct FitOptions {
   bool q = true, n = true, b = true, k = true, r = true;
   bool gauss_markov = false;  // model the bias as Gauss-Markov (sigma, T) in place of the flat B
   // With gauss_markov false: analyze() fits both bias models (flat B and Gauss-Markov) and keeps the
-  // one the data prefer (BIC of the likelihood fits; rate input with the likelihood fit only, else
+  // one the data prefer (AIC of the likelihood fits, when the GM stands out; rate input with the likelihood fit only, else
   // the flat B). false: the flat B as asked (`ldv allan --bias-model flat`).
   bool choose_bias_model = true;
   bool sinusoid = false;      // add a sinusoid (amplitude, frequency)
