@@ -141,7 +141,7 @@ ChannelResult analyze_channel(const PhaseSeries& s, const AnalysisOptions& opt) 
         // a model that predicts the error growth (the filter's noise config), which is what AIC
         // chooses for (Kullback-Leibler). BIC's ln n (about 13 for hours of data) counts every
         // ordinate as evidence on the GM's T, which only the few around its corner carry: on the
-        // paper's GM gyros it kept the flat B in 16-19 of 20 records at likelihood ratios of 4-12,
+        // paper's GM gyros it kept the flat B in 16-19 of 20 records at likelihood ratios mostly 4-12,
         // and the flat B took K 20-45 % high. AIC's risk, a GM that is not there when chance lifts
         // the likelihood by 1 (one record in six without a bias), is closed by asking the GM to
         // stand out (gm_stands_out).
