@@ -153,8 +153,9 @@ void add_allan_command(CLI::App& app) {
   auto bias_model =
       cmd->add_option("--bias-model", args->bias_model,
                       "bias instability model: auto | flat | gm (default auto: for rate input both the flat B and the "
-                      "Gauss-Markov (sigma, T) are fitted by the likelihood and the lower BIC wins, reported in the "
-                      "table and the JSON's bias_model_selection; the flat B without the likelihood fit)")
+                      "Gauss-Markov (sigma, T) are fitted by the likelihood and the lower AIC wins when the GM stands out "
+                      "(sigma's interval off 0, T's off the white-noise bound), reported in the table and the JSON's "
+                      "bias_model_selection; the flat B without the likelihood fit)")
           ->check(CLI::IsMember({"auto", "flat", "gm"}));
   auto gm_flag = cmd->add_flag("--gauss-markov", args->gauss_markov,
                                "model the bias instability as Gauss-Markov (sigma, T) instead of flat B (= --bias-model gm)")
