@@ -81,7 +81,7 @@ void widen(TermEstimate& t, double extra, double z) {
 // interval stays above the shortest T (a GM that may be that short is white in the blocks, N's double).
 bool gm_stands_out(const NoiseFit& fit, double block_s) {
   const TermEstimate& gm = fit[ModelTerm::kGaussMarkov];
-  return gm.in_model && gm.lo > 0.0 && gm.shape_lo > 1.02 * gm_min_time_constant(block_s);
+  return gm.in_model && gm.lo > 0.0 && !gm_time_constant_at_bound(gm.shape_lo, block_s);
 }
 
 BiasModelCandidate candidate(const FitAttempt& a) {

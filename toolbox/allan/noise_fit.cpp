@@ -114,9 +114,6 @@ LinearFit fit_with_shape(Basis b, int shaped, const Solver& solve, double lo, do
   return f;
 }
 
-// A Gauss-Markov term whose T is this close to its lower bound is taken to be at the bound.
-constexpr double kAtBound = 1.02;
-
 struct Model {
   Basis basis;
   LinearFit fit;
@@ -148,7 +145,7 @@ Model fit_model(std::vector<ModelTerm> terms, const Data& d, const Solver& solve
   m.fit = fit_with_shape(m.basis, shaped, solve, lo, hi);
   m.basis.shapes[shaped] = m.fit.c.back();
   m.fit.c.pop_back();
-  if (gm && m.fit.c[shaped] > 0 && m.basis.shapes[shaped] <= lo * kAtBound) {
+  if (gm && m.fit.c[shaped] > 0 && gm_time_constant_at_bound(m.basis.shapes[shaped], tmin)) {
     // Still pulled to the shortest T: the term is white at this resolution, i.e. white noise of
     // density 2 sigma^2 T. Fold it into N: refit without it, the GM absent (coefficient 0).
     Basis without = m.basis;
@@ -314,6 +311,10 @@ double NoiseFit::model_avar(double tau) const {
 }
 
 double gm_min_time_constant(double resolution_s) { return kGaussMarkovMinResolution * resolution_s; }
+
+bool gm_time_constant_at_bound(double t_s, double resolution_s) {
+  return t_s <= 1.02 * gm_min_time_constant(resolution_s);
+}
 
 void set_term_interval(TermEstimate& t, double c, double sigma_c, double z) {
   t.value = std::sqrt(c);

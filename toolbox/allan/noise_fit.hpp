@@ -92,6 +92,8 @@ struct NoiseFit {
 // term into N (refit without it) and reports the GM absent (value 0, not resolved, T at the bound).
 constexpr double kGaussMarkovMinResolution = 5.0;
 double gm_min_time_constant(double resolution_s);
+// T within 2 % of that bound: the fit was pulled to it (folded into N, or a T interval that reaches it).
+bool gm_time_constant_at_bound(double t_s, double resolution_s);
 
 // Value, 1-sigma and interval of a term from its squared coefficient c >= 0 and the 1-sigma
 // sigma_c of c; z: the normal quantile of the interval.

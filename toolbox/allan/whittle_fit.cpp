@@ -472,7 +472,7 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
   const double gm_t_min = gm_min_time_constant(p.tau_b);
   bool gm_folded = false;
   double gm_folded_sigma_c = 0.0;
-  if (gm_index >= 0 && sol.c(gm_index) > 0 && mod.gm_t_s <= gm_t_min * 1.02 &&
+  if (gm_index >= 0 && sol.c(gm_index) > 0 && gm_time_constant_at_bound(mod.gm_t_s, p.tau_b) &&
       std::find(mod.terms.begin(), mod.terms.end(), ModelTerm::kN) != mod.terms.end()) {
     Model without = mod;
     without.terms.erase(without.terms.begin() + gm_index);
