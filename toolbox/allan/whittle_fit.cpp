@@ -366,8 +366,8 @@ double profile_log_likelihood(const Model& mod, const Periodogram& p, const Solu
 std::pair<double, double> profile_interval(const Model& mod, const Periodogram& p, const Solution& best, int j,
                                            double drop, double sigma_c, LnTRange ln_t) {
   const double target = best.log_likelihood - drop;
-  auto below = [&](double c) { return profile_log_likelihood(mod, p, best, j, c, ln_t) < target; };
-  const double c0 = best.c(j) > 0 ? best.c(j) : std::max(sigma_c, 1e-300);
+  // Not finite counts as below: a failed profile is no evidence for the value.
+  auto below = [&](double c) { return !(profile_log_likelihood(mod, p, best, j, c, ln_t) >= target); };
   auto bisect = [&](double inside, double outside) {  // in ln c
     for (int it = 0; it < 14; ++it) {
       const double mid = std::sqrt(inside * outside);
@@ -375,10 +375,20 @@ std::pair<double, double> profile_interval(const Model& mod, const Periodogram& 
     }
     return std::sqrt(inside * outside);
   };
-  double hi = c0 * 2.0;
+  // The upper end, bracketed between a value inside and one outside. An estimate of 0 has no scale of its
+  // own: from its Fisher sigma, halved until inside. (That sigma was once taken as inside unchecked: where
+  // another term can stand in for this one, e.g. a Gauss-Markov at the longest T for K, the sigma is huge and
+  // the interval reached 10x the truth.)
+  double inside = best.c(j);
+  if (!(inside > 0)) {
+    inside = std::max(sigma_c, 1e-300);
+    int shrink = 0;
+    while (below(inside) && shrink++ < 60) inside /= 2.0;
+  }
+  double outside = inside * 2.0;
   int grow = 0;
-  while (!below(hi) && grow++ < 40) hi *= 2.0;
-  const double upper = bisect(hi / 2.0 < c0 ? c0 : hi / 2.0, hi);
+  while (!below(outside) && grow++ < 40) inside = outside, outside *= 2.0;
+  const double upper = bisect(inside, outside);
   double lower = 0.0;
   if (best.c(j) > 0 && below(0.0)) {
     double lo = best.c(j) / 2.0;
