@@ -75,6 +75,18 @@ Accuracy evaluate(const sim::SimResult& sim, FilterOptions options, double settl
   return acc;
 }
 
+SmoothedRun smooth_run(const sim::SimResult& sim, const FilterOptions& options) {
+  KfGinsConfig cfg = sim.kfgins;
+  cfg.end_time_s = -1;
+  NavFilter filter(options);
+  RtsRecorder recorder(filter);
+  filter.set_observer(&recorder);
+  RunCallbacks cb;
+  cb.on_epoch = [&](const NavFilter& f) { recorder.add_row(f, 0); };
+  run_navigation(sim.imu, sim.gnss, cfg, filter, cb);
+  return recorder.smooth();
+}
+
 SmoothedDrive smooth_drive(const std::string& grade, std::uint64_t seed, const std::vector<sim::Outage>& outages,
                            double duration_s) {
   sim::SimRequest req;
@@ -84,18 +96,10 @@ SmoothedDrive smooth_drive(const std::string& grade, std::uint64_t seed, const s
   req.scenario = "figure8";
   req.outages = outages;
   const sim::SimResult sim = sim::simulate(req);
-  KfGinsConfig cfg = sim.kfgins;
-  cfg.end_time_s = -1;
-  FilterOptions opt = options_from_kfgins(cfg);
+  FilterOptions opt = options_from_kfgins(sim.kfgins);
   // The simulator's RTK errors have a 60 s Gauss-Markov part: modelled, as a consistency check needs.
   opt.add.push_back("gnss_position_bias");
-  NavFilter filter(opt);
-  RtsRecorder recorder(filter);
-  filter.set_observer(&recorder);
-  RunCallbacks cb;
-  cb.on_epoch = [&](const NavFilter& f) { recorder.add_row(f, 0); };
-  run_navigation(sim.imu, sim.gnss, cfg, filter, cb);
-  const SmoothedRun run = recorder.smooth();
+  const SmoothedRun run = smooth_run(sim, opt);
 
   SmoothedDrive d;
   d.gaps.resize(outages.size());

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "estimator/filter/nav_filter.hpp"
+#include "estimator/smooth/rts_recorder.hpp"
 #include "sim/simulator.hpp"
 
 namespace ldv::est::test {
@@ -25,6 +26,10 @@ Eigen::Matrix<double, 9, 1> nav_error(const NavState& s, const sim::TruthSample&
 // `others`: readings of other sensors (odometer) fed with the fixes.
 Accuracy evaluate(const sim::SimResult& sim, FilterOptions options, double settle_s = 60.0,
                   const std::vector<ObservationPtr>& others = {});
+
+// The simulated run filtered forward with these options (the simulator's configuration, to the end of the data)
+// and smoothed (estimator/smooth).
+SmoothedRun smooth_run(const sim::SimResult& sim, const FilterOptions& options);
 
 // A simulated figure-8 drive with GNSS outages, filtered forward (kfgins21 + gnss_position_bias, which the
 // simulator's RTK errors need) and smoothed (estimator/smooth); both against truth at 10 Hz.

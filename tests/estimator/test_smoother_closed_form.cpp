@@ -95,9 +95,7 @@ TEST(SmootherClosedForm, GivenOnlyGyroWhiteNoiseInA60sGap_ThenForwardAndSmoothed
   req.custom_grade = grade;
   const sim::SimResult sim = sim::simulate(req);
 
-  KfGinsConfig cfg = sim.kfgins;
-  cfg.end_time_s = -1;
-  FilterOptions opt = options_from_kfgins(cfg);
+  FilterOptions opt = options_from_kfgins(sim.kfgins);
   opt.arw_rad_per_sqrt_s = Vec3::Constant(arw_rad_per_sqrt_s);
   opt.vrw_mps_per_sqrt_s = Vec3::Zero();
   // Biases and scale held (1e-3 deg/h and 1e-6 m/s^2 move the 60 s gap by 2 mm): the 1-D model has none.
@@ -111,13 +109,7 @@ TEST(SmootherClosedForm, GivenOnlyGyroWhiteNoiseInA60sGap_ThenForwardAndSmoothed
   opt.adapt_imu_noise = false;  // the model as configured
   opt.zupt.enabled = false;     // free inertial in the gap, as a moving vehicle's
   opt.aids.enabled.clear();
-  NavFilter filter(opt);
-  RtsRecorder recorder(filter);
-  filter.set_observer(&recorder);
-  RunCallbacks cb;
-  cb.on_epoch = [&](const NavFilter& f) { recorder.add_row(f, 0); };
-  run_navigation(sim.imu, sim.gnss, cfg, filter, cb);
-  const SmoothedRun run = recorder.smooth();
+  const SmoothedRun run = test::smooth_run(sim, opt);
 
   // The reference over the same fixes (their stated horizontal std; the simulator states one per fix).
   const double t0 = sim.truth.front().t_s;

@@ -32,4 +32,17 @@ inline std::vector<double> simulate_rate(const SensorTruth& t, double dt, long s
   return y;
 }
 
+// The paper's Q: an additive white error of std q on the integrated quantity (each sample's rate gets
+// (e_k - e_{k-1}) / dt; Allan variance 3 q^2 / tau^2).
+inline void add_quantisation(std::vector<double>& y, double dt, double q, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> g(0.0, q);
+  double previous = g(rng);
+  for (double& v : y) {
+    const double e = g(rng);
+    v += (e - previous) / dt;
+    previous = e;
+  }
+}
+
 }  // namespace ldv::allan::test

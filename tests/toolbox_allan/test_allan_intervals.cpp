@@ -24,18 +24,6 @@ ChannelResult analyse(std::vector<double> y, double dt) {
   return analyze({phase_from_rates(std::move(y), dt, "gyro_x", "rad/s")}, opt).front();
 }
 
-// The paper's Q: an additive white error of std q on the integrated angle (Allan variance 3 q^2 / tau^2).
-void add_quantisation(std::vector<double>& y, double dt, double q, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> g(0.0, q);
-  double previous = g(rng);
-  for (double& v : y) {
-    const double e = g(rng);
-    v += (e - previous) / dt;
-    previous = e;
-  }
-}
-
 }  // namespace
 
 TEST(AllanIntervals, GivenAQuantisationOverTheWhiteNoise_ThenNsIntervalCarriesTheHeldQ) {

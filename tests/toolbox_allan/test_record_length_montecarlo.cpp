@@ -46,16 +46,7 @@ GrowthRow forced_gm_study(const SensorTruth& t, double q, double hours, double r
   std::vector<double> t_ratios;
   for (int seed = 1; seed <= seeds; ++seed) {
     std::vector<double> y = simulate_rate(t, dt, samples, seed0 + seed);
-    if (q > 0) {
-      std::mt19937_64 rng(seed0 + 1000 + seed);
-      std::normal_distribution<double> g(0.0, q);
-      double previous = g(rng);
-      for (double& v : y) {
-        const double e = g(rng);
-        v += (e - previous) / dt;
-        previous = e;
-      }
-    }
+    if (q > 0) add_quantisation(y, dt, q, seed0 + 1000 + seed);
     AnalysisOptions opt;
     opt.fit_options.gauss_markov = true;
     const ChannelResult r = analyze({phase_from_rates(std::move(y), dt, "x", "unit")}, opt).front();
