@@ -378,7 +378,7 @@ std::pair<double, double> profile_interval(const Model& mod, const Periodogram& 
   // The upper end, bracketed between a value inside and one outside. An estimate of 0 has no scale of its
   // own: from its Fisher sigma, halved until inside. (That sigma was once taken as inside unchecked: where
   // another term can stand in for this one, e.g. a Gauss-Markov at the longest T for K, the sigma is huge and
-  // the interval reached 10x the truth.)
+  // the interval reached 8.5x the truth.)
   double inside = best.c(j);
   if (!(inside > 0)) {
     inside = std::max(sigma_c, 1e-300);
