@@ -12,8 +12,9 @@
 // 16 %, as test_noise_fit_montecarlo.cpp) and the truth inside the 95 % interval in 18 of 20. At 16 h the
 // relative RMS of some term must be beyond 1.5x its bound (the case this is about); the rest is printed.
 //
-// The rate is 10 Hz (the paper's 100 Hz gives the same estimates on the same realisation averaged to 10 Hz:
-// these terms live below 0.01 Hz), which keeps 256 h of samples at 9.2 million.
+// The rate is 10 Hz, which keeps 256 h of samples at 9.2 million. These terms live below 0.01 Hz: on the same
+// realisation at 100 Hz and averaged to 10 Hz (the HG1900 gyro Y, 10 seeds), sigma and K agreed within 1.3 %,
+// and T within 10 % where its interval spans decades (within 2 % where it is resolved).
 #include <gtest/gtest.h>
 
 #include <algorithm>
