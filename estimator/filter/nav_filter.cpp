@@ -562,6 +562,17 @@ void NavFilter::adapt_imu_noise(const InnovationRecord& rec) {
   c_.imu_noise_scale = std::clamp(c_.imu_noise_scale * std::exp(step), 1.0, kMaxImuNoiseScale);
 }
 
+bool NavFilter::fill_unset_white_noise(const Vec3& arw_rad_per_sqrt_s, const Vec3& vrw_mps_per_sqrt_s) {
+  bool filled = false;
+  for (int axis = 0; axis < 3; ++axis) {
+    for (auto [configured, given] : {std::pair{&opt_.arw_rad_per_sqrt_s(axis), arw_rad_per_sqrt_s(axis)},
+                                     std::pair{&opt_.vrw_mps_per_sqrt_s(axis), vrw_mps_per_sqrt_s(axis)}}) {
+      if (*configured == 0.0 && std::isfinite(given) && given > 0.0) *configured = given, filled = true;
+    }
+  }
+  return filled;
+}
+
 void NavFilter::set_imu_noise_floor(const ImuNoiseScale& psd_floor) {
   if (std::isfinite(psd_floor.gyro)) c_.imu_noise_floor.gyro = std::clamp(psd_floor.gyro, 1.0, kMaxImuNoiseScale);
   if (std::isfinite(psd_floor.accel)) c_.imu_noise_floor.accel = std::clamp(psd_floor.accel, 1.0, kMaxImuNoiseScale);

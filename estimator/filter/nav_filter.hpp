@@ -66,6 +66,10 @@ class NavFilter {
   const FaultCounters& faults() const { return faults_; }
   // The factor the NIS adaptation puts on top of the floor (FilterOptions::adapt_imu_noise; >= 1).
   double imu_noise_scale() const { return c_.imu_noise_scale; }
+  // A white-noise density configured as 0 (a datasheet that prints none) takes the one given, axis by axis,
+  // e.g. what a standstill in the data showed: the floor below is a factor and cannot raise a 0. Before
+  // initialize (the static detector reads the densities there). Returns whether anything was filled.
+  bool fill_unset_white_noise(const Vec3& arw_rad_per_sqrt_s, const Vec3& vrw_mps_per_sqrt_s);
   // The floor: the noise as installed, e.g. what a standstill in the data showed (installed_imu_noise.hpp), set
   // after initialize; without it the configuration. The adaptation never goes below it.
   void set_imu_noise_floor(const ImuNoiseScale& psd_floor);

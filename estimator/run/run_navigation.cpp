@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <optional>
+#include <string>
 
 #include "common/geo/earth_model.hpp"
 #include "common/io/input_error.hpp"
@@ -196,17 +198,51 @@ double initialisation_epoch(const std::vector<ImuIncrement>& imu, const std::vec
   return session.started_at_s();
 }
 
+namespace {
+
+// "vrw (accel white noise) was 0 on x y z: the standstill's 0.02 0.02 0.03 m/s/sqrt(h) taken" (and arw alike).
+std::string unset_white_noise_note(const Vec3& arw0, const Vec3& vrw0, const FilterOptions& now) {
+  std::string note;
+  auto add = [&](const char* key, const char* what, const Vec3& before, const Vec3& after, double to_unit,
+                 const char* unit) {
+    std::string axes, values;
+    for (int a = 0; a < 3; ++a) {
+      if (before(a) != after(a)) {
+        axes += std::string(axes.empty() ? "" : " ") + "xyz"[a];
+        char v[32];
+        std::snprintf(v, sizeof v, "%s%.3g", values.empty() ? "" : " ", after(a) * to_unit);
+        values += v;
+      }
+    }
+    if (axes.empty()) return;
+    note += std::string(note.empty() ? "" : "; ") + key + " (" + what + ") was 0 on " + axes + ": the standstill's " +
+            values + " " + unit + " taken";
+  };
+  add("imunoise.arw", "gyro white noise", arw0, now.arw_rad_per_sqrt_s, kRadToDeg * 60.0, "deg/sqrt(h)");
+  add("imunoise.vrw", "accel white noise", vrw0, now.vrw_mps_per_sqrt_s, 60.0, "m/s/sqrt(h)");
+  return note;
+}
+
+}  // namespace
+
 RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
                           const KfGinsConfig& cfg, NavFilter& filter, const RunCallbacks& cb,
                           const AlignmentOptions* alignment, const std::vector<ObservationPtr>* others) {
   RunSummary sum;
   size_t i = first_imu_index(imu, cfg);
-  SessionOptions so = session_options_from(cfg, filter.options(), alignment);
+  std::optional<ImuNoiseScale> noise_floor;
   if (filter.options().adapt_imu_noise && filter.options().installed_noise_floor) {
     const InstalledImuNoise noise = measure_installed_imu_noise(imu, gnss);
-    so.imu_noise_floor = noise.psd_scale(filter.options().arw_rad_per_sqrt_s, filter.options().vrw_mps_per_sqrt_s);
+    if (noise.found) {
+      const Vec3 arw0 = filter.options().arw_rad_per_sqrt_s, vrw0 = filter.options().vrw_mps_per_sqrt_s;
+      if (filter.fill_unset_white_noise(noise.arw_rad_per_sqrt_s, noise.vrw_mps_per_sqrt_s))
+        sum.white_noise_filled = unset_white_noise_note(arw0, vrw0, filter.options());
+    }
+    noise_floor = noise.psd_scale(filter.options().arw_rad_per_sqrt_s, filter.options().vrw_mps_per_sqrt_s);
     sum.imu_noise_standstill_s = noise.found ? noise.standstill_s : 0.0;
   }
+  SessionOptions so = session_options_from(cfg, filter.options(), alignment);
+  so.imu_noise_floor = noise_floor;
   NavSession session(so, filter, [&](const NavFilter& f, int) {
     if (cb.on_innovation)
       for (const auto& r : filter.take_innovations()) cb.on_innovation(r);

@@ -52,6 +52,9 @@ struct RunSummary {
   // data showed (the adaptation's floor), and the adapted factor on top of it at the end of the run.
   ImuNoiseScale imu_noise_floor;
   double imu_noise_standstill_s = 0.0;  // the standstill it was measured over (0: none in the data, floor 1)
+  // A white-noise density configured as 0 that the standstill's measurement replaced (NavFilter::
+  // fill_unset_white_noise), in words with the values; empty when none.
+  std::string white_noise_filled;
   double imu_noise_scale_end = 1.0;
 };
 

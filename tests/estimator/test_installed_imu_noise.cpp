@@ -3,19 +3,21 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <string>
 
 #include "estimator/calibrate/installed_imu_noise.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "sim/simulator.hpp"
+#include "tests/estimator/sim_run.hpp"
 
 namespace ldv::est {
 namespace {
 
-sim::SimResult vibrating_car(double gnss_rate_hz) {
+sim::SimResult vibrating_car(double gnss_rate_hz, double duration_s = 60.0) {
   sim::SimRequest req;
   req.grade = "3dm-gx2-typical";
   req.scenario = "straight";  // 10 s at rest, then straight runs
-  req.duration_s = 60.0;
+  req.duration_s = duration_s;
   req.gnss_rate_hz = gnss_rate_hz;
   req.seed = 4;
   req.vehicle.vibration_factor = 10.0;
@@ -124,6 +126,41 @@ TEST(InstalledImuNoise, GivenTheQuantisationOfThePapersHg1700_ThenItIsNotTakenFo
       EXPECT_LT(psd.accel, 200.0);
     }
   }
+}
+
+// A datasheet that prints no VRW (the paper's three do not), written as vrw 0: the floor is a factor on the
+// configured PSD and cannot raise a 0, so the filter trusted every accelerometer increment exactly. The
+// standstill's measurement takes the 0's place (NavFilter::fill_unset_white_noise), and the run says so.
+TEST(InstalledImuNoise, GivenAVrwOfZeroInTheConfiguration_ThenTheStandstillsMeasurementTakesItsPlace) {
+  const sim::SimResult sim = vibrating_car(1.0, 120.0);
+  const FilterOptions datasheet = options_from_kfgins(sim.kfgins);
+  FilterOptions no_vrw = datasheet;
+  no_vrw.vrw_mps_per_sqrt_s.setZero();
+
+  NavFilter filter(no_vrw);
+  KfGinsConfig cfg = sim.kfgins;
+  cfg.end_time_s = -1;
+  const RunSummary sum = run_navigation(sim.imu, sim.gnss, cfg, filter, {});
+  std::printf("%s\n", sum.white_noise_filled.c_str());
+  EXPECT_NE(sum.white_noise_filled.find("imunoise.vrw"), std::string::npos);
+  EXPECT_EQ(sum.white_noise_filled.find("imunoise.arw"), std::string::npos) << "the ARW was configured";
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(filter.options().vrw_mps_per_sqrt_s(k) / datasheet.vrw_mps_per_sqrt_s(k), 10.0, 1.5) << k;
+    EXPECT_EQ(filter.options().arw_rad_per_sqrt_s(k), datasheet.arw_rad_per_sqrt_s(k)) << k;
+  }
+  EXPECT_NEAR(sum.imu_noise_floor.accel, 1.0, 0.15) << "measured against itself";
+
+  // Against the truth: the filled run is as consistent as one configured with the installed VRW (10x the
+  // datasheet's, as simulated); with the 0 kept (no floor) the filter is overconfident in velocity.
+  FilterOptions installed = datasheet, kept = no_vrw;
+  installed.vrw_mps_per_sqrt_s *= 10.0;
+  kept.installed_noise_floor = false;
+  const test::Accuracy filled = test::evaluate(sim, no_vrw, 20.0), right = test::evaluate(sim, installed, 20.0),
+                       zero = test::evaluate(sim, kept, 20.0);
+  std::printf("velocity NEES (3 dof): VRW measured %.2f, VRW as installed %.2f, VRW 0 kept %.2f\n", filled.nees_vel,
+              right.nees_vel, zero.nees_vel);
+  EXPECT_NEAR(filled.nees_vel / right.nees_vel, 1.0, 0.2);
+  EXPECT_GT(zero.nees_vel, 1.5 * right.nees_vel);
 }
 
 }  // namespace

@@ -285,9 +285,11 @@ void run_nav(const NavArgs& a) {
   }
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
   if (show_progress) std::fprintf(stderr, "\r");
-  if (!a.quiet)
+  if (!a.quiet) {
     print_summary(a.smooth ? "files, smoothed" : "files", sum.imu_samples, sum.t_start_s, sum.t_end_s, sum.gnss_fixes,
                   sum.initialisation, *filter, elapsed, nav_path, sum.imu_noise_standstill_s);
+    if (!sum.white_noise_filled.empty()) std::fprintf(stderr, "  %s\n", sum.white_noise_filled.c_str());
+  }
 }
 
 // `nav` and `smooth` take the same options (`smooth` = `nav --smooth`).
