@@ -279,6 +279,21 @@ def noise_floor(path):
     return (float(m.group(1)), float(m.group(2))) if m else None
 
 
+def filled_white_noise(path, key, configured):
+    """The configured arw or vrw (imunoise units) with the axes ldv nav filled from the standstill (a 0 in the
+    configuration: "imunoise.vrw (...) was 0 on x y z: the standstill's a b c m/s/sqrt(h) taken")."""
+    values = list(configured)
+    try:
+        text = open(path).read()
+    except OSError:
+        return values
+    m = re.search(r"imunoise\." + key + r" \([^)]*\) was 0 on ([xyz ]+): the standstill's ([0-9.e+\- ]+) ", text)
+    if m:
+        for axis, v in zip(m.group(1).split(), m.group(2).split()):
+            values["xyz".index(axis)] = float(v)
+    return values
+
+
 def cmd_table(out_dir, paper_path, seed, static_seed, seconds):
     paper = yaml.safe_load(open(paper_path))
     t12 = paper["table12_outage_max_drift"]
@@ -360,7 +375,8 @@ def cmd_table(out_dir, paper_path, seed, static_seed, seconds):
         if mode == "adaptive":
             p("What the default did to the configured white noise (`ldv nav`'s summary over the same drive: the "
               "factor on the configured PSD at the end, the standstill floor times the NIS adaptation; the "
-              "effective ARW / VRW is the configured one times sqrt(factor), median over the axes):\n")
+              "effective ARW / VRW is the configured one times sqrt(factor), median over the axes; a density "
+              "configured as 0 is the standstill's measurement, which ldv nav takes in its place):\n")
             p("| IMU | model | gyro PSD factor | effective ARW [deg/sqrt(h)] | accel PSD factor | "
               "effective VRW [m/s/sqrt(h)] |")
             p("|---|---|---|---|---|---|")
@@ -371,8 +387,9 @@ def cmd_table(out_dir, paper_path, seed, static_seed, seconds):
                         p(f"| {name} | {mname} | - | - | - | - |")
                         continue
                     n = cfgs[grade, m]["imunoise"]
-                    arw = sorted(n["arw"])[1] * math.sqrt(f[0])
-                    vrw = sorted(n["vrw"])[1] * math.sqrt(f[1])
+                    noise_txt = f"{out_dir}/{grade}/{m}.adaptive.noise.txt"
+                    arw = sorted(filled_white_noise(noise_txt, "arw", n["arw"]))[1] * math.sqrt(f[0])
+                    vrw = sorted(filled_white_noise(noise_txt, "vrw", n["vrw"]))[1] * math.sqrt(f[1])
                     p(f"| {name} | {mname} | {f[0]:.3g}x | {g3(arw)} | {f[1]:.3g}x | {g3(vrw)} |")
             p()
 

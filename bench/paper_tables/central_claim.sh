@@ -71,10 +71,10 @@ for spec in hg1700-paper:57600:100 hg1900-paper:57600:100 3dm-gx2-paper:18000:20
       "${RUN[@]}" outage --kfgins-config "$dir/$model.$mode.yaml" --truth "$dir/drive/truth.nav" --model geoldv51 \
         --lengths 60,120,300 --no-zupt --json "$dir/$model.$mode.json" --quiet > "$dir/$model.$mode.txt"
     done
-    # What the adaptive default does to the configured white noise: ldv nav's summary line (the floor a
-    # standstill in the drive shows, times the NIS adaptation).
+    # What the adaptive default does to the configured white noise: ldv nav's summary lines (the floor a
+    # standstill in the drive shows, times the NIS adaptation; a density configured as 0 and what it took).
     "${RUN[@]}" nav --kfgins-config "$dir/$model.adaptive.yaml" --model geoldv51 --out "$dir/nav_tmp.nav" 2>&1 >/dev/null |
-      tr '\r' '\n' | grep 'IMU noise as installed' > "$dir/$model.adaptive.noise.txt" || true
+      tr '\r' '\n' | grep -E 'IMU noise as installed|was 0 on' > "$dir/$model.adaptive.noise.txt" || true
     rm -f "$dir/nav_tmp.nav" "$dir/nav_tmp_std.txt" "$dir/nav_tmp_innovations.txt"
   done
   # 4. Where the differences come from: the datasheet model with one group of the true terms swapped in, and the
