@@ -225,6 +225,25 @@ LnTRange gm_search_range(const Periodogram& p) {
   return {lo, std::max(lo, std::log(p.blocks * p.tau_b / 3.0))};
 }
 
+// The maximum of f over ln T in `range`: `grid` points evenly spaced (and the `start` point already evaluated),
+// then golden section within one grid step of the best. The profile in T can have two humps; the grid finds
+// the higher one.
+struct LnTMaximum {
+  double ln_t = 0.0, value = -std::numeric_limits<double>::infinity();
+};
+template <typename F>
+LnTMaximum grid_then_golden_max(const F& f, LnTRange range, int grid, int iterations, LnTMaximum start) {
+  const double step = (range.hi - range.lo) / (grid - 1);
+  for (int g = 0; g < grid; ++g) {
+    const double x = range.lo + g * step, l = f(x);
+    if (l > start.value) start = {x, l};
+  }
+  double refined_l = 0.0;
+  const double refined_ln = golden_section_max(f, std::max(range.lo, start.ln_t - step),
+                                               std::min(range.hi, start.ln_t + step), iterations, &refined_l);
+  return refined_l >= start.value ? LnTMaximum{refined_ln, refined_l} : start;
+}
+
 // Profile likelihood over ln T: a log grid, then golden section around its best point.
 Solution maximise(Model& mod, const Periodogram& p, const Eigen::VectorXd& start, int gm_index) {
   if (gm_index < 0) {
@@ -236,18 +255,10 @@ Solution maximise(Model& mod, const Periodogram& p, const Eigen::VectorXd& start
     set_densities(mod, p);
     return maximise_at_fixed_shape(mod, p, start);
   };
-  const auto [lo, hi] = gm_search_range(p);
-  const int grid = 24;
-  const double step = (hi - lo) / (grid - 1);
-  double best_ln = lo, best_l = -std::numeric_limits<double>::infinity();
-  for (int g = 0; g < grid; ++g) {
-    const double l = at(lo + g * step).log_likelihood;
-    if (l > best_l) best_l = l, best_ln = lo + g * step;
-  }
-  double refined_l = 0.0;
-  const double refined_ln = golden_section_max([&](double x) { return at(x).log_likelihood; },
-                                               std::max(lo, best_ln - step), std::min(hi, best_ln + step), 30, &refined_l);
-  return at(refined_l >= best_l ? refined_ln : best_ln);
+  const LnTRange range = gm_search_range(p);
+  const LnTMaximum best = grid_then_golden_max([&](double x) { return at(x).log_likelihood; }, range, 24, 30,
+                                               {range.lo, -std::numeric_limits<double>::infinity()});
+  return at(best.ln_t);
 }
 
 // Inverse Fisher information of the squared coefficients in `idx` (and ln T last when the
@@ -346,17 +357,9 @@ double profile_log_likelihood(const Model& mod, const Periodogram& p, const Solu
   };
   const double ln_t0 = std::log(std::max(mod.gm_t_s, 1e-300));
   if (!has_gm) return at(ln_t0);
-  // A coarse grid first: over a wide interval the profile in T can have two humps.
+  // A coarse grid (steps of at most 0.5 in ln T) from the estimate's own T.
   const int grid = std::clamp(static_cast<int>(std::ceil((ln_t.hi - ln_t.lo) / 0.5)) + 1, 2, 12);
-  const double step = (ln_t.hi - ln_t.lo) / (grid - 1);
-  double best_ln = ln_t0, best_l = at(ln_t0);
-  for (int g = 0; g < grid; ++g) {
-    const double x = ln_t.lo + g * step, l = at(x);
-    if (l > best_l) best_l = l, best_ln = x;
-  }
-  double l_searched = 0.0;
-  golden_section_max(at, std::max(ln_t.lo, best_ln - step), std::min(ln_t.hi, best_ln + step), 10, &l_searched);
-  return std::max(l_searched, best_l);
+  return grid_then_golden_max(at, ln_t, grid, 10, {ln_t0, at(ln_t0)}).value;
 }
 
 // Likelihood-ratio interval of c_j: where the profile falls `drop` (chi2_1 quantile / 2) below
