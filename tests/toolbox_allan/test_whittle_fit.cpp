@@ -193,6 +193,41 @@ TEST(WhittleFit, NoDegenerateGaussMarkovOnWhiteNoise) {
   }
 }
 
+TEST(WhittleFit, NoGaussMarkovWhereQuantisationHidesTheWhiteNoise) {
+  // Issue 14: the paper's HG1700 gyro Z (Table 5: Q 16.687 arcsec, N 0.045 deg/sqrt(h), no bias term) at
+  // 100 Hz, fitted with --gauss-markov. Q, white noise of the integrated angle, has the rate density
+  // (2 pi f)^2 Q^2 tau0 at low f, above N^2 from f_c = N / (2 pi Q sqrt(tau0)) = 0.26 Hz: white noise shows
+  // only below f_c. A GM with its corner 1/(2 pi T) near f_c (T of 0.3-2 s, well above the 0.1 s
+  // bound of 5 blocks) then split N's band with it: in the 16 h paper-sensor study N came out 1-6 % low in
+  // some seeds, and its interval's lower end at 0.16-0.8 of the truth (the record measures N to 0.6 %).
+  // Checked: N within 3 % (the issue's criterion), its 95 % interval holding the truth and no wider
+  // than 10 % below it, and no GM resolved.
+  constexpr double kArcsec = M_PI / 180.0 / 3600.0, dt = 0.01;
+  const double q = 16.687 * kArcsec;
+  SensorTruth t;
+  t.n = 0.045 * M_PI / 180.0 / 60.0;
+  const double f_c_hz = t.n / (2.0 * M_PI * q * std::sqrt(dt));
+  EXPECT_NEAR(f_c_hz, 0.26, 0.01);
+  for (unsigned seed : {5001u, 5002u, 5003u}) {
+    auto y = simulate_rate(t, dt, 4 * 360000, seed);
+    add_quantisation(y, dt, q, seed + 100);
+    AnalysisOptions opt;
+    opt.fit_options.gauss_markov = true;
+    const ChannelResult r = analyze({phase_from_rates(std::move(y), dt, "gyro_z", "rad/s")}, opt).front();
+    ASSERT_TRUE(r.fit);
+    ASSERT_EQ(r.fit->method, "whittle") << r.likelihood_error;
+    const TermEstimate& n = (*r.fit)[ModelTerm::kN];
+    const TermEstimate& gm = (*r.fit)[ModelTerm::kGaussMarkov];
+    std::printf("seed %u: N %.4f of the truth [%.4f, %.4f]; GM %.3g (T %.3g s) %s\n", seed, n.value / t.n,
+                n.lo / t.n, n.hi / t.n, gm.value, gm.shape, gm.resolved ? "resolved" : "not resolved");
+    EXPECT_NEAR(n.value / t.n, 1.0, 0.03) << "seed " << seed;
+    EXPECT_LE(n.lo, t.n) << "seed " << seed;
+    EXPECT_GE(n.hi, t.n) << "seed " << seed;
+    EXPECT_GT(n.lo / t.n, 0.9) << "seed " << seed;
+    EXPECT_FALSE(gm.resolved) << "seed " << seed;
+  }
+}
+
 TEST(WhittleFit, RealGaussMarkovIsStillFound) {
   // Control: the same white noise with a GM that dominates (sigma 5x the white noise's Allan
   // deviation at T: 2 sigma^2 T = 50 N^2) at T = 20 s and at a short but resolved T = 0.5 s (25 blocks, 5x the bound).

@@ -271,7 +271,8 @@ void write_json(const std::string& path, const std::string& input, const std::ve
         << ", \"covariance_inflation\": " << num(f.covariance_inflation)
         << ", \"gls\": " << (f.gls ? "true" : "false");
       if (r.likelihood) {
-        o << ", \"likelihood_block_s\": " << num(r.likelihood->block_s) << ", \"likelihood_ordinates\": "
+        o << ", \"likelihood_block_s\": " << num(r.likelihood->block_s)
+          << ", \"gm_resolution_s\": " << num(r.likelihood->gm_resolution_s) << ", \"likelihood_ordinates\": "
           << r.likelihood->ordinates << ", \"log_likelihood\": " << num(r.likelihood->log_likelihood);
       }
       o << "}";

@@ -78,10 +78,10 @@ void widen(TermEstimate& t, double extra, double z) {
 }
 
 // A Gauss-Markov the data hold apart from the other terms: its sigma's interval excludes 0, and its T's
-// interval stays above the shortest T (a GM that may be that short is white in the blocks, N's double).
-bool gm_stands_out(const NoiseFit& fit, double block_s) {
+// interval stays above the shortest T (a GM that may be that short is white where N shows, N's double).
+bool gm_stands_out(const NoiseFit& fit, double gm_resolution_s) {
   const TermEstimate& gm = fit[ModelTerm::kGaussMarkov];
-  return gm.in_model && gm.lo > 0.0 && !gm_time_constant_at_bound(gm.shape_lo, block_s);
+  return gm.in_model && gm.lo > 0.0 && !gm_time_constant_at_bound(gm.shape_lo, gm_resolution_s);
 }
 
 BiasModelCandidate candidate(const FitAttempt& a) {
@@ -156,7 +156,7 @@ ChannelResult analyze_channel(const PhaseSeries& s, const AnalysisOptions& opt) 
           choice.criterion = "AIC";
           choice.likelihood_ratio =
               2.0 * (choice.gauss_markov.log_likelihood - choice.flat.log_likelihood) / choice.taper_variance_factor;
-          choice.gauss_markov_stands_out = gm_stands_out(*gm.refined, gm.summary->block_s);
+          choice.gauss_markov_stands_out = gm_stands_out(*gm.refined, gm.summary->gm_resolution_s);
           if (choice.gauss_markov.aic < choice.flat.aic && !choice.gauss_markov_stands_out) {
             choice.note = "the Gauss-Markov's AIC is lower, but its sigma's interval reaches 0 or its T's the "
                           "white-noise bound: flat B";

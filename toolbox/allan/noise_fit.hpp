@@ -83,7 +83,8 @@ struct NoiseFit {
 };
 
 // Shortest Gauss-Markov time constant a fit accepts, in units of its resolution (the shortest tau of
-// the Allan-curve fit, the block length of the likelihood fit). A GM with T well below the
+// the Allan-curve fit; in the likelihood fit the block length, or longer where a quantisation noise Q
+// hides N: whittle_fit.cpp, gm_resolution). A GM with T well below the
 // resolution is white noise there: flat spectrum up to 1/(2 pi T), Allan variance 2 sigma^2 T / tau
 // at tau >> T, i.e. white noise of density 2 sigma^2 T, so it can only trade against N (on white
 // noise alone it took 25-65 % of N^2 at T of a few samples). At 5 resolution steps its Allan hump

@@ -139,6 +139,9 @@ Periodogram periodogram_of_block_differences(const PhaseSeries& s, long m) {
 struct Model {
   std::vector<ModelTerm> terms;  // estimated
   double gm_t_s = 0.0;
+  // The finest time scale at which a GM's shape can be told from white noise (gm_resolution); its T is
+  // searched from kGaussMarkovMinResolution times this.
+  double gm_resolution_s = 0.0;
   Eigen::MatrixXd density;  // bins x terms, unit coefficients
   Eigen::VectorXd fixed;    // density of the held terms (Q)
 };
@@ -215,13 +218,13 @@ double golden_section_max(const F& f, double a, double z, int iterations, double
 }
 
 // The range of ln T searched. The Gauss-Markov hump sits at 1.89 T: T up to a third of the record; from
-// below, T is bounded at a few blocks (gm_min_time_constant, noise_fit.hpp: shorter, the term is white in
-// the blocks).
+// below, T is bounded at a few steps of the model's GM resolution (gm_min_time_constant, noise_fit.hpp:
+// shorter, the term is white where N can be seen).
 struct LnTRange {
   double lo = 0.0, hi = 0.0;
 };
-LnTRange gm_search_range(const Periodogram& p) {
-  const double lo = std::log(gm_min_time_constant(p.tau_b));
+LnTRange gm_search_range(const Model& mod, const Periodogram& p) {
+  const double lo = std::log(gm_min_time_constant(mod.gm_resolution_s));
   return {lo, std::max(lo, std::log(p.blocks * p.tau_b / 3.0))};
 }
 
@@ -255,7 +258,7 @@ Solution maximise(Model& mod, const Periodogram& p, const Eigen::VectorXd& start
     set_densities(mod, p);
     return maximise_at_fixed_shape(mod, p, start);
   };
-  const LnTRange range = gm_search_range(p);
+  const LnTRange range = gm_search_range(mod, p);
   const LnTMaximum best = grid_then_golden_max([&](double x) { return at(x).log_likelihood; }, range, 24, 30,
                                                {range.lo, -std::numeric_limits<double>::infinity()});
   return at(best.ln_t);
@@ -439,6 +442,21 @@ decltype(&std::declval<Bounds&>().n) bound_slot(Bounds& b, ModelTerm t) {
   }
 }
 
+// The finest time scale at which a Gauss-Markov's shape can be told from white noise: the block length,
+// or longer where the held Q hides N. Above the frequency nu_c (cycles per block) at which Q's density
+// passes N's, the white level is not seen, so a GM whose corner 1/(2 pi T) lies there is N's double in
+// the only band where N shows: on the HG1700 gyros (Q 6-17 arcsec, N 0.04 deg/sqrt(h), nu_c 0.19-0.44 Hz
+// at 100 Hz) a forced GM with T of 0.3-2 s took N 1-6 % low. Resolution: the period whose Nyquist is
+// nu_c, tau_b / (2 nu_c), as tau_b is the block band's. `n_density`: N's squared coefficient (0: no N).
+double gm_resolution(const Periodogram& p, const Eigen::VectorXd& q_density, double n_density) {
+  if (!(n_density > 0.0)) return p.tau_b;
+  for (size_t b = 0; b < p.nu.size(); ++b) {
+    if (q_density(static_cast<long>(b)) >= n_density * block_difference_density(ModelTerm::kN, p.nu[b], p.tau_b))
+      return p.tau_b / (2.0 * p.nu[b]);
+  }
+  return p.tau_b;
+}
+
 }  // namespace
 
 NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptions& opt, double block_s,
@@ -463,6 +481,13 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
   mod.fixed.resize(static_cast<long>(p.nu.size()));
   for (size_t b = 0; b < p.nu.size(); ++b)
     mod.fixed(b) = q * q * block_difference_density(ModelTerm::kQ, p.nu[b], p.tau_b);
+  // Only an N the curve fit resolved (significant and dominant at some tau): a sensor without white noise (the
+  // paper's HG1900 accelerometers, Q + GM + K) has no N for a GM to double. Ungated, the small curve N that
+  // chance leaves there (inside its sigma) put nu_c near 0 and pushed T's floor past the true T (accelerometer X:
+  // GM chosen in 8 of 20 records where it was 20, K within 30 % in 8 where it was 20).
+  const TermEstimate& n_curve = curve[ModelTerm::kN];
+  const bool n_present = opt.n && n_curve.in_model && n_curve.resolved;
+  mod.gm_resolution_s = gm_resolution(p, mod.fixed, n_present ? n_curve.value * n_curve.value : 0.0);
 
   // Start from the curve fit; a term it left at 0 starts small but positive, so the scoring can
   // still bring it in.
@@ -479,13 +504,14 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
   if (!sol.c.allFinite() || !std::isfinite(sol.log_likelihood)) {
     throw std::invalid_argument("likelihood fit: no finite maximum (the curve fit is kept)");
   }
-  // A Gauss-Markov term still pulled to its shortest T is white noise in the blocks (density
+  // A Gauss-Markov term still pulled to its shortest T is white noise where N shows (density
   // 2 sigma^2 T): fold it into N by refitting without it, and report it absent (value 0, T at the
   // bound, the upper end of its interval from its information there).
-  const double gm_t_min = gm_min_time_constant(p.tau_b);
+  const double gm_t_min = gm_min_time_constant(mod.gm_resolution_s);
+  const double gm_resolution_s = mod.gm_resolution_s;
   bool gm_folded = false;
   double gm_folded_sigma_c = 0.0;
-  if (gm_index >= 0 && sol.c(gm_index) > 0 && gm_time_constant_at_bound(mod.gm_t_s, p.tau_b) &&
+  if (gm_index >= 0 && sol.c(gm_index) > 0 && gm_time_constant_at_bound(mod.gm_t_s, gm_resolution_s) &&
       std::find(mod.terms.begin(), mod.terms.end(), ModelTerm::kN) != mod.terms.end()) {
     Model without = mod;
     without.terms.erase(without.terms.begin() + gm_index);
@@ -530,7 +556,7 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
   LnTRange t_interval{std::log(std::max(mod.gm_t_s, 1e-300)), std::log(std::max(mod.gm_t_s, 1e-300))};
   LnTRange t_search = t_interval;
   if (gm_index >= 0 && sol.c(gm_index) > 0) {
-    const LnTRange range = gm_search_range(p);
+    const LnTRange range = gm_search_range(mod, p);
     t_interval = time_constant_interval(mod, p, sol, drop, range);
     t_search = {std::max(range.lo, t_interval.lo - 0.25), std::min(range.hi, t_interval.hi + 0.25)};
   }
@@ -639,6 +665,7 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
   if (summary) {
     summary->n_sigma_from_held_q = n_sigma_from_held_q;
     summary->block_s = p.tau_b;
+    summary->gm_resolution_s = gm_resolution_s;
     summary->ordinates = p.ordinates;
     summary->log_likelihood = sol.log_likelihood;
     summary->iterations = sol.iterations;

@@ -21,6 +21,9 @@ namespace ldv::allan {
 
 struct WhittleSummary {
   double block_s = 0.0;  // tau_b: the rate is averaged over blocks of this length
+  // The finest time scale at which a Gauss-Markov's shape can be told from white noise: block_s, or longer
+  // where the held Q hides N above some frequency. T is searched from kGaussMarkovMinResolution times it.
+  double gm_resolution_s = 0.0;
   long ordinates = 0;    // Fourier ordinates used (frequency 0 and Nyquist excluded)
   double log_likelihood = 0.0;
   int iterations = 0;  // scoring iterations at the final Gauss-Markov time constant
