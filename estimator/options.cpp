@@ -74,6 +74,8 @@ void FilterOptions::print(std::ostream& out) const {
   for (const auto& d : drop) out << " -" << d;
   out << "\n  arw " << (arw_rad_per_sqrt_s / (kDegToRad / 60.0)).transpose() << " deg/sqrt(h), vrw "
       << (vrw_mps_per_sqrt_s * 60.0).transpose() << " m/s/sqrt(h)\n";
+  if (gyro_quantization_rad.any())
+    out << "  gyro quantization Q " << (gyro_quantization_rad / (kDegToRad / 3600.0)).transpose() << " arcsec\n";
   print_block(out, "gyro_bias", gyro_bias, 1.0 / deg_h, "deg/h");
   print_block(out, "accel_bias", accel_bias, 1e5, "mGal");
   print_block(out, "gyro_scale", gyro_scale, 1e6, "ppm");
@@ -138,6 +140,7 @@ void check_block(const BlockOptions& b, const std::string& name) {
 void FilterOptions::check() const {
   require(finite_in(arw_rad_per_sqrt_s, 0.0, 1.0), "arw: must be in [0, 1] rad/sqrt(s)");
   require(finite_in(vrw_mps_per_sqrt_s, 0.0, 100.0), "vrw: must be in [0, 100] m/s/sqrt(s)");
+  require(finite_in(gyro_quantization_rad, 0.0, 0.1), "gyro_quantization_rad: must be in [0, 0.1] rad");
   const std::pair<const BlockOptions*, const char*> blocks[] = {{&gyro_bias, "gyro_bias"},
                                                                 {&accel_bias, "accel_bias"},
                                                                 {&gyro_scale, "gyro_scale"},

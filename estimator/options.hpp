@@ -64,6 +64,11 @@ struct FilterOptions {
 
   Vec3 arw_rad_per_sqrt_s = Vec3::Constant(0.003 * kDegToRad);  // gyro white noise
   Vec3 vrw_mps_per_sqrt_s = Vec3::Constant(0.001);              // accel white noise
+  // The gyros' Allan Q [rad] (IEEE 952's quantization noise, the paper's Q): a white error of std Q on the
+  // integrated angle, not on the rate, so it does not accumulate in attitude. It tilts the specific force:
+  // velocity takes a random walk of density |f x e| sqrt(tau0) (tau0 the IMU sample period), and the reported
+  // attitude sigma holds Q itself (nav_filter.cpp). 0: none (KF-GINS has no such term).
+  Vec3 gyro_quantization_rad = Vec3::Zero();
 
   BlockOptions gyro_bias, accel_bias, gyro_scale, accel_scale;
   BlockOptions gyro_misalignment, accel_misalignment, g_sensitivity;

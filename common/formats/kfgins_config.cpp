@@ -97,6 +97,8 @@ const std::vector<std::string> kLdvKeys = {
     "moving_bias_gyro_gm_rad_s", "moving_bias_gyro_gm_time_s", "moving_bias_gyro_rw_rad_s_sqrt_s",
     "moving_bias_gyro_ramp_rad_s2", "moving_bias_accel_gm_mps2", "moving_bias_accel_gm_time_s",
     "moving_bias_accel_rw_mps2_sqrt_s", "moving_bias_accel_ramp_mps3",
+    // the gyros' Allan Q [rad]: a white error of the integrated angle (estimator/options.hpp)
+    "gyro_quantization_rad",
     // land-vehicle aids (estimator/options.hpp AidOptions)
     "aids", "vehicle_mounting_deg", "nhc_std_mps", "odometer_std_mps", "odometer_lever_arm_m", "odometer_scale",
     // inputs

@@ -359,7 +359,13 @@ void NavFilter::flush_covariance() {
   Eigen::MatrixXd Qd;
   const bool want = observer_.p && observer_.p->wants_matrices();
   const ImuNoiseScale q_scale = imu_noise_psd_scale();
-  const Mat3 Qv = C * opt_.vrw_mps_per_sqrt_s.cwiseAbs2().asDiagonal() * C.transpose() * (T * q_scale.accel);
+  Mat3 Qv = C * opt_.vrw_mps_per_sqrt_s.cwiseAbs2().asDiagonal() * C.transpose() * (T * q_scale.accel);
+  if (opt_.gyro_quantization_rad.any() && T > 0.0) {
+    // The gyros' Q, a white error e of the integrated angle, tilts the specific force: each IMU sample of
+    // tau0 adds f x e tau0 to the velocity error, a random walk of density [f x] Sigma_e [f x]^T tau0.
+    const Mat3 f_cross = skew(c_.acc_dv_n / T);
+    Qv += f_cross * attitude_quantization_cov_n() * f_cross.transpose() * (T * c_.imu_interval_s);
+  }
   const Mat3 Qp = C * opt_.arw_rad_per_sqrt_s.cwiseAbs2().asDiagonal() * C.transpose() * (T * q_scale.gyro);
   P.block<3, 3>(kVel, kVel) += Qv;
   P.block<3, 3>(kAtt, kAtt) += Qp;
@@ -634,8 +640,13 @@ NavStd NavFilter::nav_std() const {
   NavStd s;
   s.pos_ned_m = c_.P.diagonal().segment<3>(kPos).cwiseSqrt();
   s.vel_n_mps = c_.P.diagonal().segment<3>(kVel).cwiseSqrt();
-  s.att_rad = c_.P.diagonal().segment<3>(kAtt).cwiseSqrt();
+  s.att_rad = (c_.P.diagonal().segment<3>(kAtt) + attitude_quantization_cov_n().diagonal()).cwiseSqrt();
   return s;
+}
+
+Mat3 NavFilter::attitude_quantization_cov_n() const {
+  const Mat3 C = c_.nav.C_b_n();
+  return C * opt_.gyro_quantization_rad.cwiseAbs2().asDiagonal() * C.transpose();
 }
 
 std::vector<InnovationRecord> NavFilter::take_innovations() {

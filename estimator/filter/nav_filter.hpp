@@ -54,7 +54,11 @@ class NavFilter {
   const Eigen::MatrixXd& covariance() const { return c_.P; }
   // Replaces the covariance (tools / tests). A matrix that is not finite and PD is reset and flagged.
   void set_covariance(const Eigen::MatrixXd& P);
+  // Position, velocity and attitude sigmas; the attitude's with the gyros' Q (attitude_quantization_cov_n).
   NavStd nav_std() const;
+  // Covariance of the gyros' white angle error Q in n [rad^2]: no state holds it (it does not accumulate), so it
+  // is added where attitude is reported, not to P.
+  Mat3 attitude_quantization_cov_n() const;
   // Nominal estimates of the effect states (layout offsets minus 9), SI units.
   const Eigen::VectorXd& effect_state() const { return c_.x_eff; }
   const ImuErrorModel& error_model() const { return c_.model; }

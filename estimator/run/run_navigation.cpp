@@ -82,6 +82,7 @@ FilterOptions options_from_kfgins(const KfGinsConfig& cfg) {
   };
   o.aids.mounting_rpy_rad = vec3_key("vehicle_mounting_deg", o.aids.mounting_rpy_rad, kDegToRad);
   o.odometer_lever_arm.init = vec3_key("odometer_lever_arm_m", o.odometer_lever_arm.init, 1.0);
+  o.gyro_quantization_rad = vec3_key("gyro_quantization_rad", o.gyro_quantization_rad, 1.0);
   // geoldv51's moving bias per term, where the configuration has them (ldv sim writes the grade's): the
   // Gauss-Markov is B alone (imunoise's gbstd merges K into it), K drives the random-walk states, R is the
   // ramp rate's prior. Each key is optional.

@@ -56,7 +56,9 @@ Accuracy evaluate(const sim::SimResult& sim, FilterOptions options, double settl
     const Eigen::MatrixXd& P = f.covariance();
     acc.nees_pos += e.head<3>().dot(P.block<3, 3>(0, 0).ldlt().solve(e.head<3>()));
     acc.nees_vel += e.segment<3>(3).dot(P.block<3, 3>(3, 3).ldlt().solve(e.segment<3>(3)));
-    acc.nees_att += e.tail<3>().dot(P.block<3, 3>(6, 6).ldlt().solve(e.tail<3>()));
+    // The reported attitude covariance: P's with the gyros' Q, which no state holds.
+    const Mat3 P_att = P.block<3, 3>(6, 6) + f.attitude_quantization_cov_n();
+    acc.nees_att += e.tail<3>().dot(P_att.ldlt().solve(e.tail<3>()));
     ++n_nees;
   };
   KfGinsConfig cfg = sim.kfgins;

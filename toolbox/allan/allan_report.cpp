@@ -393,6 +393,13 @@ std::string kfgins_noise_yaml(const std::vector<ChannelResult>& results) {
     list(*ch, [&](const NoiseFit& f) { return term(f, ModelTerm::kR); });
     o << "\n";
   }
+  // The gyros' Q [rad/s * s = rad]: a white error of the integrated angle, whose tilt of the specific force ldv nav
+  // adds to the velocity noise.
+  if (!gyro.empty()) {
+    o << "  gyro_quantization_rad: ";
+    list(gyro, [&](const NoiseFit& f) { return term(f, ModelTerm::kQ); });
+    o << "\n";
+  }
   return o.str();
 }
 

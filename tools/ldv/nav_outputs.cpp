@@ -106,7 +106,9 @@ void NavOutputs::epoch(const est::NavFilter& f, int week) {
   nav_.write(nav_record(s, week));
   if (s.t_s + 1e-9 < next_std_t_) return;
   next_std_t_ = s.t_s + std_period_;
-  const Eigen::VectorXd sd = f.covariance().diagonal().cwiseMax(0.0).cwiseSqrt();
+  Eigen::VectorXd var = f.covariance().diagonal().cwiseMax(0.0);
+  var.segment<3>(est::kAtt) += f.attitude_quantization_cov_n().diagonal();  // the gyros' Q: no state holds it
+  const Eigen::VectorXd sd = var.cwiseSqrt();
   std_row(std_, week, s.t_s, sd.head(est::kNavDim), f.layout(), f.effect_state(), sd.tail(sd.size() - est::kNavDim));
 }
 
