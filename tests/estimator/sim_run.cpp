@@ -20,6 +20,22 @@ Eigen::Matrix<double, 9, 1> nav_error(const NavState& s, const sim::TruthSample&
   return e;
 }
 
+std::vector<allan::PhaseSeries> allan_channels_of(const sim::SimResult& s) {
+  std::vector<allan::PhaseSeries> out;
+  const double dt = 1.0 / s.request.imu_rate_hz;
+  for (int sensor = 0; sensor < 2; ++sensor)
+    for (int axis = 0; axis < 3; ++axis) {
+      std::vector<double> y;
+      y.reserve(s.imu.size());
+      for (const ImuIncrement& inc : s.imu)
+        y.push_back((sensor == 0 ? inc.dtheta_b_rad : inc.dvel_b_mps)(axis) / inc.dt_s);
+      out.push_back(allan::phase_from_rates(std::move(y), dt,
+                                            (sensor == 0 ? "gyro_" : "accel_") + std::string(1, "xyz"[axis]),
+                                            sensor == 0 ? "rad/s" : "m/s^2"));
+    }
+  return out;
+}
+
 Accuracy evaluate(const sim::SimResult& sim, FilterOptions options, double settle_s,
                   const std::vector<ObservationPtr>& others) {
   NavFilter filter(options);

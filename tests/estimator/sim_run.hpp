@@ -7,6 +7,7 @@
 #include "estimator/filter/nav_filter.hpp"
 #include "estimator/smooth/rts_recorder.hpp"
 #include "sim/simulator.hpp"
+#include "toolbox/allan/phase_series.hpp"
 
 namespace ldv::est::test {
 
@@ -20,6 +21,10 @@ struct Accuracy {
 
 // Errors of the filter's state against truth: NED position [m], velocity, attitude phi [rad] (C_hat = (I - [phi x]) C).
 Eigen::Matrix<double, 9, 1> nav_error(const NavState& s, const sim::TruthSample& t);
+
+// The gyro and accelerometer rates of a (static) simulated record as Allan channels gyro_x.. (rad/s), then
+// accel_x.. (m/s^2).
+std::vector<allan::PhaseSeries> allan_channels_of(const sim::SimResult& s);
 
 // Runs `options` on `sim` (initial state from the simulator's KF-GINS config, i.e. truth with its std)
 // and returns the errors, evaluated after `settle_s`.

@@ -24,23 +24,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The gyro and accelerometer rates of a static record as Allan channels (rad/s, m/s^2).
-std::vector<allan::PhaseSeries> channels_of(const sim::SimResult& s) {
-  std::vector<allan::PhaseSeries> out;
-  const double dt = 1.0 / s.request.imu_rate_hz;
-  for (int sensor = 0; sensor < 2; ++sensor)
-    for (int axis = 0; axis < 3; ++axis) {
-      std::vector<double> y;
-      y.reserve(s.imu.size());
-      for (const ImuIncrement& inc : s.imu)
-        y.push_back((sensor == 0 ? inc.dtheta_b_rad : inc.dvel_b_mps)(axis) / inc.dt_s);
-      out.push_back(allan::phase_from_rates(std::move(y), dt,
-                                            (sensor == 0 ? "gyro_" : "accel_") + std::string(1, "xyz"[axis]),
-                                            sensor == 0 ? "rad/s" : "m/s^2"));
-    }
-  return out;
-}
-
 // The drive's configuration with the noise the Allan fit identified in place of the true one.
 KfGinsConfig config_with_noise(const fs::path& dir, const std::string& noise_yaml) {
   YAML::Node cfg = YAML::LoadFile((dir / "kfgins.yaml").string());
@@ -65,7 +48,7 @@ TEST(AllanToFilter, TheIdentifiedNoiseKeepsTheFilterAsConsistentAsTheTrueTerms) 
   still.seed = 41;
   const sim::SimResult record = sim::simulate(still);
   allan::AnalysisOptions opt;
-  const std::vector<allan::ChannelResult> fits = allan::analyze(channels_of(record), opt, nullptr);
+  const std::vector<allan::ChannelResult> fits = allan::analyze(test::allan_channels_of(record), opt, nullptr);
   const std::string noise_yaml = allan::kfgins_noise_yaml(fits);
   ASSERT_FALSE(noise_yaml.empty());
   std::printf("%s", noise_yaml.c_str());

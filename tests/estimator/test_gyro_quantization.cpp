@@ -95,13 +95,8 @@ TEST(GyroQuantization, GivenAStaticRecordOfThe3dmGx2_ThenTheNoiseConfigLdvAllanW
   still.imu_rate_hz = 20.0;
   still.seed = 3;
   const sim::SimResult record = sim::simulate(still);
-  const double dt = 1.0 / still.imu_rate_hz;
-  std::vector<allan::PhaseSeries> gyros;
-  for (int axis = 0; axis < 3; ++axis) {
-    std::vector<double> rate;
-    for (const ImuIncrement& inc : record.imu) rate.push_back(inc.dtheta_b_rad(axis) / inc.dt_s);
-    gyros.push_back(allan::phase_from_rates(std::move(rate), dt, std::string("gyro_") + "xyz"[axis], "rad/s"));
-  }
+  std::vector<allan::PhaseSeries> gyros = test::allan_channels_of(record);
+  gyros.resize(3);
   const std::string yaml = allan::kfgins_noise_yaml(allan::analyze(gyros, allan::AnalysisOptions{}, nullptr));
   const YAML::Node q = YAML::Load(yaml)["ldv"]["gyro_quantization_rad"];
   ASSERT_TRUE(q && q.IsSequence() && q.size() == 3) << yaml;
