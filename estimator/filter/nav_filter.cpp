@@ -644,9 +644,12 @@ NavStd NavFilter::nav_std() const {
   return s;
 }
 
+Mat3 attitude_quantization_cov_n(const Mat3& C_b_n, const Vec3& gyro_quantization_rad) {
+  return C_b_n * gyro_quantization_rad.cwiseAbs2().asDiagonal() * C_b_n.transpose();
+}
+
 Mat3 NavFilter::attitude_quantization_cov_n() const {
-  const Mat3 C = c_.nav.C_b_n();
-  return C * opt_.gyro_quantization_rad.cwiseAbs2().asDiagonal() * C.transpose();
+  return est::attitude_quantization_cov_n(c_.nav.C_b_n(), opt_.gyro_quantization_rad);
 }
 
 std::vector<InnovationRecord> NavFilter::take_innovations() {

@@ -34,6 +34,10 @@
 
 namespace ldv::est {
 
+// Covariance of the gyros' white angle error (their Allan Q per body axis [rad]) in n [rad^2]: no state holds it
+// (it does not accumulate), so it is added where attitude is reported, not to P.
+Mat3 attitude_quantization_cov_n(const Mat3& C_b_n, const Vec3& gyro_quantization_rad);
+
 class NavFilter {
  public:
   explicit NavFilter(FilterOptions options);
@@ -56,8 +60,7 @@ class NavFilter {
   void set_covariance(const Eigen::MatrixXd& P);
   // Position, velocity and attitude sigmas; the attitude's with the gyros' Q (attitude_quantization_cov_n).
   NavStd nav_std() const;
-  // Covariance of the gyros' white angle error Q in n [rad^2]: no state holds it (it does not accumulate), so it
-  // is added where attitude is reported, not to P.
+  // Covariance of the gyros' white angle error Q in n [rad^2] at the current attitude (the free function below).
   Mat3 attitude_quantization_cov_n() const;
   // Nominal estimates of the effect states (layout offsets minus 9), SI units.
   const Eigen::VectorXd& effect_state() const { return c_.x_eff; }

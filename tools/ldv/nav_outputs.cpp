@@ -130,7 +130,8 @@ void NavOutputs::close() {
 }
 
 void write_smoothed(const est::SmoothedRun& run, const est::StateLayout& layout, const std::string& nav_path,
-                    double std_rate_hz, const std::function<void(double)>& progress) {
+                    double std_rate_hz, const Vec3& gyro_quantization_rad,
+                    const std::function<void(double)>& progress) {
   const std::string base = output_base(nav_path);
   NavWriter nav(nav_path);
   TextOut sd(base + "_std.txt", std_header(layout));
@@ -148,7 +149,12 @@ void write_smoothed(const est::SmoothedRun& run, const est::StateLayout& layout,
     if (progress && i % 20000 == 0) progress(static_cast<double>(i) / run.size());
     if (r.smoothed.t_s + 1e-9 < next_t) continue;
     next_t = r.smoothed.t_s + period;
-    std_row(sd, r.week, r.smoothed.t_s, r.std_smoothed, layout, r.x_eff_smoothed, r.std_eff_smoothed);
+    est::Vec9 nav_sd = r.std_smoothed;
+    nav_sd.segment<3>(est::kAtt) =
+        (nav_sd.segment<3>(est::kAtt).cwiseAbs2() +
+         est::attitude_quantization_cov_n(r.smoothed.C_b_n(), gyro_quantization_rad).diagonal())
+            .cwiseSqrt();
+    std_row(sd, r.week, r.smoothed.t_s, nav_sd, layout, r.x_eff_smoothed, r.std_eff_smoothed);
     sep.num(r.week, 0);
     sep.num(r.smoothed.t_s, 4);
     for (const est::Vec9* v : {&r.separation, &r.std_separation})

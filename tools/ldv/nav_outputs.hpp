@@ -56,7 +56,10 @@ inline constexpr const char* kSeparationHeaderStart = "# week sow sep_n sep_e se
 
 // A smoothed run's files: FILE.nav, FILE_std.txt (the smoothed std and effect estimates, as NavOutputs writes
 // them) and FILE_separation.txt at std_rate_hz.
+// gyro_quantization_rad: the gyros' Q, added to the smoothed attitude sigma as the forward filter's (it cancels in the
+// separation: forward and smoothed attitude carry the same white angle error).
 void write_smoothed(const est::SmoothedRun& run, const est::StateLayout& layout, const std::string& nav_path,
-                    double std_rate_hz, const std::function<void(double)>& progress = {});
+                    double std_rate_hz, const Vec3& gyro_quantization_rad,
+                    const std::function<void(double)>& progress = {});
 
 }  // namespace ldv::cli
