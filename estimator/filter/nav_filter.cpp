@@ -364,7 +364,8 @@ void NavFilter::flush_covariance() {
     // The gyros' Q, a white error e of the integrated angle, tilts the specific force: each IMU sample of
     // tau0 adds f x e tau0 to the velocity error, a random walk of density [f x] Sigma_e [f x]^T tau0.
     const Mat3 f_cross = skew(c_.acc_dv_n / T);
-    Qv += f_cross * attitude_quantization_cov_n() * f_cross.transpose() * (T * c_.imu_interval_s);
+    Qv += f_cross * est::attitude_quantization_cov_n(C, opt_.gyro_quantization_rad) * f_cross.transpose() *
+          (T * c_.imu_interval_s);
   }
   const Mat3 Qp = C * opt_.arw_rad_per_sqrt_s.cwiseAbs2().asDiagonal() * C.transpose() * (T * q_scale.gyro);
   P.block<3, 3>(kVel, kVel) += Qv;
@@ -638,9 +639,10 @@ void NavFilter::set_covariance(const Eigen::MatrixXd& P) {
 
 NavStd NavFilter::nav_std() const {
   NavStd s;
-  s.pos_ned_m = c_.P.diagonal().segment<3>(kPos).cwiseSqrt();
-  s.vel_n_mps = c_.P.diagonal().segment<3>(kVel).cwiseSqrt();
-  s.att_rad = (c_.P.diagonal().segment<3>(kAtt) + attitude_quantization_cov_n().diagonal()).cwiseSqrt();
+  const Eigen::Matrix<double, kNavDim, 1> var = c_.P.diagonal().head<kNavDim>().cwiseMax(0.0);
+  s.pos_ned_m = var.segment<3>(kPos).cwiseSqrt();
+  s.vel_n_mps = var.segment<3>(kVel).cwiseSqrt();
+  s.att_rad = (var.segment<3>(kAtt) + attitude_quantization_cov_n().diagonal()).cwiseSqrt();
   return s;
 }
 

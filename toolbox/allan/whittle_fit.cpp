@@ -508,10 +508,9 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
   // 2 sigma^2 T): fold it into N by refitting without it, and report it absent (value 0, T at the
   // bound, the upper end of its interval from its information there).
   const double gm_t_min = gm_min_time_constant(mod.gm_resolution_s);
-  const double gm_resolution_s = mod.gm_resolution_s;
   bool gm_folded = false;
   double gm_folded_sigma_c = 0.0;
-  if (gm_index >= 0 && sol.c(gm_index) > 0 && gm_time_constant_at_bound(mod.gm_t_s, gm_resolution_s) &&
+  if (gm_index >= 0 && sol.c(gm_index) > 0 && gm_time_constant_at_bound(mod.gm_t_s, mod.gm_resolution_s) &&
       std::find(mod.terms.begin(), mod.terms.end(), ModelTerm::kN) != mod.terms.end()) {
     Model without = mod;
     without.terms.erase(without.terms.begin() + gm_index);
@@ -665,7 +664,7 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
   if (summary) {
     summary->n_sigma_from_held_q = n_sigma_from_held_q;
     summary->block_s = p.tau_b;
-    summary->gm_resolution_s = gm_resolution_s;
+    summary->gm_resolution_s = mod.gm_resolution_s;  // `without`, if folded, is mod's copy: the same
     summary->ordinates = p.ordinates;
     summary->log_likelihood = sol.log_likelihood;
     summary->iterations = sol.iterations;

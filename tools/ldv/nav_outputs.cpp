@@ -106,10 +106,12 @@ void NavOutputs::epoch(const est::NavFilter& f, int week) {
   nav_.write(nav_record(s, week));
   if (s.t_s + 1e-9 < next_std_t_) return;
   next_std_t_ = s.t_s + std_period_;
-  Eigen::VectorXd var = f.covariance().diagonal().cwiseMax(0.0);
-  var.segment<3>(est::kAtt) += f.attitude_quantization_cov_n().diagonal();  // the gyros' Q: no state holds it
-  const Eigen::VectorXd sd = var.cwiseSqrt();
-  std_row(std_, week, s.t_s, sd.head(est::kNavDim), f.layout(), f.effect_state(), sd.tail(sd.size() - est::kNavDim));
+  const est::NavStd nav = f.nav_std();  // the attitude's with the gyros' Q, which no state holds
+  est::Vec9 nav_sd;
+  nav_sd << nav.pos_ned_m, nav.vel_n_mps, nav.att_rad;
+  const Eigen::VectorXd P_diag = f.covariance().diagonal();
+  const Eigen::VectorXd eff_sd = P_diag.tail(P_diag.size() - est::kNavDim).cwiseMax(0.0).cwiseSqrt();
+  std_row(std_, week, s.t_s, nav_sd, f.layout(), f.effect_state(), eff_sd);
 }
 
 void NavOutputs::innovation(const est::InnovationRecord& r) {
