@@ -64,9 +64,10 @@ TEST(GyroQuantization, GivenThe3dmGx2sPrintedQ_ThenTheAttitudeErrorIsInsideTheRe
   for (const auto& [name, a] : {std::pair{"Q configured", with_q}, std::pair{"Q left out", without_q}}) {
     std::printf("%s: %ld gate rejections, horizontal RMS %.3f m, velocity RMS %.4f m/s\n", name, a.gate_rejections,
                 a.horiz_rms_m, a.vel_rms_mps);
-    std::printf("%s: %ld samples at 1 Hz; mean NEES per dof: attitude %.2f, velocity %.2f, position %.2f; "
-                "roll/pitch RMS %.3f deg\n",
-                name, a.samples, a.nees_att / 3.0, a.nees_vel / 3.0, a.nees_pos / 3.0, a.roll_pitch_rms_deg);
+    std::printf(
+        "%s: %ld samples at 1 Hz; mean NEES per dof: attitude %.2f, velocity %.2f, position %.2f; "
+        "roll/pitch RMS %.3f deg\n",
+        name, a.samples, a.nees_att / 3.0, a.nees_vel / 3.0, a.nees_pos / 3.0, a.roll_pitch_rms_deg);
   }
   ASSERT_GT(with_q.samples, 250);
   // The attitude error is e_k (white, 1-sigma Q) plus what the states hold: 3 x 300 nearly independent

@@ -218,8 +218,8 @@ TEST(WhittleFit, NoGaussMarkovWhereQuantisationHidesTheWhiteNoise) {
     ASSERT_EQ(r.fit->method, "whittle") << r.likelihood_error;
     const TermEstimate& n = (*r.fit)[ModelTerm::kN];
     const TermEstimate& gm = (*r.fit)[ModelTerm::kGaussMarkov];
-    std::printf("seed %u: N %.4f of the truth [%.4f, %.4f]; GM %.3g (T %.3g s) %s\n", seed, n.value / t.n,
-                n.lo / t.n, n.hi / t.n, gm.value, gm.shape, gm.resolved ? "resolved" : "not resolved");
+    std::printf("seed %u: N %.4f of the truth [%.4f, %.4f]; GM %.3g (T %.3g s) %s\n", seed, n.value / t.n, n.lo / t.n,
+                n.hi / t.n, gm.value, gm.shape, gm.resolved ? "resolved" : "not resolved");
     EXPECT_NEAR(n.value / t.n, 1.0, 0.03) << "seed " << seed;
     EXPECT_LE(n.lo, t.n) << "seed " << seed;
     EXPECT_GE(n.hi, t.n) << "seed " << seed;
