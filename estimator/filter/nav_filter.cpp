@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 #include "common/geo/earth_model.hpp"
 #include "common/math/chi_square.hpp"
@@ -596,12 +597,27 @@ void NavFilter::correct(const Eigen::VectorXd& dx) {
   }
 }
 
+namespace {
+// Positive semi-definite: the states with a variance hold a positive definite block, and a state with none (a
+// term the configuration states as exactly known, std 0 and no process noise) is uncorrelated with all.
+bool positive_semidefinite(const Eigen::MatrixXd& P) {
+  std::vector<int> uncertain;
+  for (int i = 0; i < P.rows(); ++i) {
+    if (P(i, i) > 0.0)
+      uncertain.push_back(i);
+    else if ((P.row(i).array() != 0.0).any())
+      return false;
+  }
+  return Eigen::LLT<Eigen::MatrixXd>(P(uncertain, uncertain)).info() == Eigen::Success;
+}
+}  // namespace
+
 void NavFilter::check_health(bool full) {
   const Eigen::MatrixXd& P = c_.P;
-  bool ok = P.diagonal().allFinite() && (P.diagonal().array() > 0.0).all();
+  bool ok = P.diagonal().allFinite() && (P.diagonal().array() >= 0.0).all();
   if (ok && full) {
     c_.last_health_t_s = c_.nav.t_s;
-    ok = P.allFinite() && Eigen::LLT<Eigen::MatrixXd>(P).info() == Eigen::Success;
+    ok = P.allFinite() && positive_semidefinite(P);
     if (ok && finite(c_.nav)) last_good_ = c_;
   }
   if (!ok) reset_covariance();
@@ -616,6 +632,7 @@ void NavFilter::reset_covariance() {
   prior << Vec3::Constant(10.0), Vec3::Constant(1.0), Vec3::Constant(5.0 * kDegToRad), prior_std_;
   for (int i = 0; i < n; ++i) {
     const double d = c_.P(i, i);
+    // A state known exactly (prior std 0) stays so; any other lost variance falls back to the prior.
     var(i) = (std::isfinite(d) && d > 0.0) ? std::max(d, 1e-12) : prior(i) * prior(i);
   }
   c_.P = var.asDiagonal();
