@@ -17,6 +17,7 @@ namespace ldv::est {
 namespace {
 constexpr double kSnapshotPeriod_s = 0.2;
 constexpr double kHealthPeriod_s = 1.0;
+constexpr double kMaxResyncHeading_rad = 0.2;  // a re-synchronisation opens the heading by at most this
 constexpr double kSplitTolerance_s = 1e-6;
 // IMU noise adaptation (FilterOptions::adapt_imu_noise): step in ln(scale) per position fix at NIS/3 - 1,
 // and the largest scale (1e4 on the PSD: 100x the configured noise density).
@@ -107,6 +108,7 @@ void NavFilter::initialize(const NavState& s, const NavStd& std) {
   c_.initialized = true;
   c_.status = kStatusInitialized;
   c_.last_gnss_t_s = s.t_s;
+  c_.v_n_at_last_gnss_mps = s.v_n_mps;
   rebuild_error_model();
   last_good_ = c_;
   pending_.clear();
@@ -485,7 +487,7 @@ void NavFilter::apply_event(const Event& e) {
 NavFilter::RejectRun& NavFilter::reject_run(SensorName sensor) {
   for (RejectRun& r : c_.reject_runs)
     if (r.sensor == sensor) return r;
-  c_.reject_runs.push_back(RejectRun{sensor});
+  c_.reject_runs.push_back(RejectRun{sensor, 0, 0.0, {}, {}});
   return c_.reject_runs.back();
 }
 
@@ -493,10 +495,6 @@ void NavFilter::apply_measurement(const Measurement& m) {
   RejectRun& run = reject_run(m.sensor);
   if (run.last_y.size() != m.y.size()) run.last_y = Eigen::VectorXd::Zero(m.y.size());
   const double gate = gate_threshold(m.rows());
-  // Re-synchronise only on a measurement that agrees with the previous rejected one: a stream the state has
-  // left repeats itself (the innovation changes by the drift since), a lone outlier arriving at that moment
-  // does not.
-  const Eigen::VectorXd& previous = run.last_y;
   // Robust: a step is confirmed by two or more measurements beyond the gate in a row, spanning
   // step_confirm_s (a spike of multipath is shorter); KF-GINS: after a count of rejections. Only sensors
   // whose measured quantity can step (m.step_block) are ever forced.
@@ -504,8 +502,17 @@ void NavFilter::apply_measurement(const Measurement& m) {
       m.step_block >= 0 &&
       (opt_.robust_update ? run.count >= 2 && c_.nav.t_s - run.first_t_s >= opt_.step_confirm_s - kSplitTolerance_s
                           : run.count >= opt_.gate_max_consecutive_rejects);
-  const bool agrees = (m.y - previous).norm() <= 0.5 * previous.norm() + 3.0 * std::sqrt(m.R.trace());
-  const bool force = due && agrees;
+  // Re-synchronise only on a measurement that agrees with the rejected stream: a stream the state has left
+  // repeats itself (the innovation changes by the drift since), a lone outlier arriving when it is due does not.
+  // The reference is the last rejection before it was due (frozen then, so that outlier does not become it), or
+  // the one held back just before this one: a state that keeps drifting away (an initial tilt stated 100x too
+  // small: the position error grows as t^2) soon leaves the frozen reference behind, and two in a row that agree
+  // are the stream.
+  const auto agrees_with = [&](const Eigen::VectorXd& reference) {
+    return reference.size() == m.y.size() &&
+           (m.y - reference).norm() <= 0.5 * reference.norm() + 3.0 * std::sqrt(m.R.trace());
+  };
+  const bool force = due && (agrees_with(run.last_y) || agrees_with(run.held_y));
   InnovationRecord rec;
   rec.t_s = c_.nav.t_s;
   rec.replayed = replaying_;
@@ -524,6 +531,12 @@ void NavFilter::apply_measurement(const Measurement& m) {
       const double tilt_rad = std::min(2.0 * m.y.head<2>().norm() / (earth::kStandardGravity_mps2 * T * T), 0.1);
       c_.P(kAtt, kAtt) += tilt_rad * tilt_rad;
       c_.P(kAtt + 1, kAtt + 1) += tilt_rad * tilt_rad;
+      // A heading error psi turns the horizontal velocity change dv since then into an error psi x dv, a position
+      // error of order psi |dv| T / 2. Opened where a plausible heading error explains y; a larger one is the
+      // re-alignment's to find.
+      const double dv_h_mps = (c_.nav.v_n_mps - c_.v_n_at_last_gnss_mps).head<2>().norm();
+      const double heading_rad = 2.0 * m.y.head<2>().norm() / std::max(dv_h_mps * T, 1e-9);
+      if (heading_rad <= kMaxResyncHeading_rad) c_.P(kAtt + 2, kAtt + 2) += heading_rad * heading_rad;
     }
     if (want) {  // to an observer, the opened variance is process noise of an instant
       const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(c_.P.rows(), c_.P.cols());
@@ -543,13 +556,16 @@ void NavFilter::apply_measurement(const Measurement& m) {
   if (ok && beyond_gate) ++faults_.downweighted;
   if (used && m.gnss) {
     c_.last_gnss_t_s = c_.nav.t_s;
+    c_.v_n_at_last_gnss_mps = c_.nav.v_n_mps;
     c_.status &= ~(kStatusGnssRejected | kStatusGateResync);
   }
   if (!beyond_gate) {
     run.count = 0;
+    run.held_y.resize(0);
   } else {
     if (run.count++ == 0) run.first_t_s = c_.nav.t_s;
     if (!due) run.last_y = m.y;  // an outlier held back must not become the reference
+    run.held_y = due ? m.y : Eigen::VectorXd();
   }
   if (!used) {
     ++faults_.gate_rejections;

@@ -111,7 +111,8 @@ class NavFilter {
     SensorName sensor;
     int count = 0;
     double first_t_s = 0.0;  // epoch of the first of them
-    Eigen::VectorXd last_y;  // innovation of the last rejection
+    Eigen::VectorXd last_y;  // innovation of the last rejection before re-synchronisation was due
+    Eigen::VectorXd held_y;  // innovation of the last one held back while due (empty: none)
   };
   // Everything that changes while filtering: copied into snapshots for late measurements.
   struct Core {
@@ -127,6 +128,7 @@ class NavFilter {
     StaticDetector detector{0.5, 0.05, 0.01};
     Vec3 f_n_smooth_mps2 = Vec3::Zero();  // specific force in n, first-order low pass (window / 4: little lag)
     double last_gnss_t_s = -1e300;
+    Vec3 v_n_at_last_gnss_mps = Vec3::Zero();  // the velocity then (after its update)
     double last_health_t_s = -1e300;
     std::vector<RejectRun> reject_runs;  // per sensor
     std::vector<UpdaterSlot> updaters;   // the IMU-driven aids, with their own small state
