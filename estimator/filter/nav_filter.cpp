@@ -17,7 +17,9 @@ namespace ldv::est {
 namespace {
 constexpr double kSnapshotPeriod_s = 0.2;
 constexpr double kHealthPeriod_s = 1.0;
-constexpr double kMaxResyncHeading_rad = 0.2;  // a re-synchronisation opens the heading by at most this
+// A re-synchronisation opens the heading by at most this: beyond, the session's heading check aligns again
+// (SessionOptions::heading_failed_rad, 30 deg).
+constexpr double kMaxResyncHeading_rad = 0.52;
 constexpr double kSplitTolerance_s = 1e-6;
 // IMU noise adaptation (FilterOptions::adapt_imu_noise): step in ln(scale) per position fix at NIS/3 - 1,
 // and the largest scale (1e4 on the PSD: 100x the configured noise density).
@@ -532,8 +534,9 @@ void NavFilter::apply_measurement(const Measurement& m) {
       c_.P(kAtt, kAtt) += tilt_rad * tilt_rad;
       c_.P(kAtt + 1, kAtt + 1) += tilt_rad * tilt_rad;
       // A heading error psi turns the horizontal velocity change dv since then into an error psi x dv, a position
-      // error of order psi |dv| T / 2. Opened where a plausible heading error explains y; a larger one is the
-      // re-alignment's to find.
+      // error of order psi |dv| T / 2. Opened where a heading error up to the re-alignment's threshold explains y
+      // (without it, a heading 5 deg off stated 0.05 deg left the fixes again and again, and each forced fix
+      // tilted the attitude instead: 1 deg).
       const double dv_h_mps = (c_.nav.v_n_mps - c_.v_n_at_last_gnss_mps).head<2>().norm();
       const double heading_rad = 2.0 * m.y.head<2>().norm() / std::max(dv_h_mps * T, 1e-9);
       if (heading_rad <= kMaxResyncHeading_rad) c_.P(kAtt + 2, kAtt + 2) += heading_rad * heading_rad;
