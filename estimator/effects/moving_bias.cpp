@@ -27,8 +27,9 @@ class MovingBias final : public Effect {
     mean.setZero();
     mean.head<3>() = init_bias_;
     // States that start at zero by definition get a tiny std so P stays positive definite; so does a term the
-    // configuration leaves out (a gyro without B: gbstd 0), or the health check's Cholesky fails on every pass and
-    // resets the covariance (128,680 resets in 600 s on the paper's HG1700 gyro, which has no bias term).
+    // configuration leaves out (a gyro without B: gbstd 0). That floor came first, when the health check reset the
+    // covariance on every pass for a zero variance (128,680 resets in 600 s on the paper's HG1700 gyro); the check
+    // now accepts an exactly known state, and the floor is kept so geoldv51's outputs stay as they were.
     const Vec3 tiny = (1e-3 * o_.constant_std.cwiseMax(o_.gm_sigma)).cwiseMax(Vec3::Constant(1e-15));
     std << o_.constant_std.cwiseMax(tiny), o_.gm_sigma.cwiseMax(tiny), tiny, tiny, o_.ramp_rate_std.cwiseMax(tiny);
   }
