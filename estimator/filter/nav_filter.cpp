@@ -529,8 +529,9 @@ void NavFilter::apply_measurement(const Measurement& m) {
       // errors of order 2 y / T or tilt errors of order 2 |y| / (g T^2): open those too, or the state leaves
       // the measurements again at once.
       const double T = std::max(c_.nav.t_s - c_.last_gnss_t_s, 0.1);
+      const double y_h_m = m.y.head<2>().norm();
       c_.P.diagonal().segment<3>(kVel) += (2.0 * m.y / T).cwiseAbs2();
-      const double tilt_rad = std::min(2.0 * m.y.head<2>().norm() / (earth::kStandardGravity_mps2 * T * T), 0.1);
+      const double tilt_rad = std::min(2.0 * y_h_m / (earth::kStandardGravity_mps2 * T * T), 0.1);
       c_.P(kAtt, kAtt) += tilt_rad * tilt_rad;
       c_.P(kAtt + 1, kAtt + 1) += tilt_rad * tilt_rad;
       // A heading error psi turns the horizontal velocity change dv since then into an error psi x dv, a position
@@ -538,7 +539,7 @@ void NavFilter::apply_measurement(const Measurement& m) {
       // (without it, a heading 5 deg off stated 0.05 deg left the fixes again and again, and each forced fix
       // tilted the attitude instead: 1 deg).
       const double dv_h_mps = (c_.nav.v_n_mps - c_.v_n_at_last_gnss_mps).head<2>().norm();
-      const double heading_rad = 2.0 * m.y.head<2>().norm() / std::max(dv_h_mps * T, 1e-9);
+      const double heading_rad = 2.0 * y_h_m / std::max(dv_h_mps * T, 1e-9);
       if (heading_rad <= kMaxResyncHeading_rad) c_.P(kAtt + 2, kAtt + 2) += heading_rad * heading_rad;
     }
     if (want) {  // to an observer, the opened variance is process noise of an instant

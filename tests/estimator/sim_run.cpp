@@ -20,6 +20,19 @@ Eigen::Matrix<double, 9, 1> nav_error(const NavState& s, const sim::TruthSample&
   return e;
 }
 
+sim::SimRequest gyro_noise_only_request(double n_deg_per_sqrt_h, double q_rad) {
+  sim::SimRequest req;
+  req.seed = 7;
+  req.duration_s = 360.0;
+  req.scenario = "static";
+  sim::ImuGrade grade;
+  grade.name = "gyro-noise-only";
+  grade.gyro.white_N = Vec3::Constant(n_deg_per_sqrt_h * kDegToRad / 60.0);
+  if (q_rad > 0.0) grade.gyro.quantization_Q = Vec3::Constant(q_rad);
+  req.custom_grade = grade;
+  return req;
+}
+
 std::vector<allan::PhaseSeries> allan_channels_of(const sim::SimResult& s) {
   std::vector<allan::PhaseSeries> out;
   const double dt = 1.0 / s.request.imu_rate_hz;

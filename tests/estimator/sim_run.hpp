@@ -22,6 +22,10 @@ struct Accuracy {
 // Errors of the filter's state against truth: NED position [m], velocity, attitude phi [rad] (C_hat = (I - [phi x]) C).
 Eigen::Matrix<double, 9, 1> nav_error(const NavState& s, const sim::TruthSample& t);
 
+// A simulator request for 6 min standing (seed 7) from an IMU whose gyros have white noise N [deg/sqrt(h)] and
+// quantisation Q [rad] and nothing else, the accelerometers perfect: the scenes that study one gyro term alone.
+sim::SimRequest gyro_noise_only_request(double n_deg_per_sqrt_h, double q_rad = 0.0);
+
 // The gyro and accelerometer rates of a (static) simulated record as Allan channels gyro_x.. (rad/s), then
 // accel_x.. (m/s^2).
 std::vector<allan::PhaseSeries> allan_channels_of(const sim::SimResult& s);

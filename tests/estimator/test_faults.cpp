@@ -12,6 +12,7 @@
 #include "common/geo/earth_model.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "sim/simulator.hpp"
+#include "tests/estimator/sim_run.hpp"
 
 namespace ldv::est {
 namespace {
@@ -209,15 +210,7 @@ TEST(Faults, AZeroBiasSigmaInTheConfigKeepsGeoLdv51Healthy) {
 // the correlations through which position fixes correct the tilt: here 76,602 resets and 205 of 361 fixes
 // rejected in 6 min (with the initial tilt stated 0.01 deg as well, 359 rejected and 7.9 km off).
 TEST(Faults, AStateConfiguredAsExactlyKnownKeepsTheCovarianceCorrelated) {
-  sim::SimRequest req;
-  req.seed = 7;
-  req.duration_s = 360.0;
-  req.scenario = "static";
-  sim::ImuGrade grade;
-  grade.name = "gyro-white-noise-only";
-  grade.gyro.white_N = Vec3::Constant(3.54 * kDegToRad / 60.0);  // the 3DM-GX2's, Table 9
-  req.custom_grade = grade;
-  const sim::SimResult sim = sim::simulate(req);
+  const sim::SimResult sim = sim::simulate(test::gyro_noise_only_request(3.54));  // the 3DM-GX2's N, Table 9
   ASSERT_EQ(sim.kfgins.imu_noise.gyro_bias_std_rad_s, Vec3::Zero());
   ASSERT_EQ(sim.kfgins.imu_noise.accel_bias_std_mps2, Vec3::Zero());
   FilterOptions o = options_from_kfgins(sim.kfgins);
@@ -241,28 +234,20 @@ TEST(Faults, AStateConfiguredAsExactlyKnownKeepsTheCovarianceCorrelated) {
 // after 21 re-synchronisations). Beyond 30 deg the session aligns again (NavSession's heading check).
 struct StatedTooPrecisely {
   const char* what;
-  std::optional<std::string> grade;  // none: a gyro with white noise only (0.04 deg/sqrt(h), the HG1700's)
-  const char* scenario;
+  std::optional<std::string> grade;  // driving it; none: standing, a gyro with white noise only (the HG1700's N)
   Vec3 rpy_error_deg;
 };
 
 TEST(Faults, AStateThatLeavesTheFixStreamIsResynchronisedAndConverges) {
-  for (const StatedTooPrecisely& c :
-       {StatedTooPrecisely{"standing, roll 1 deg off", std::nullopt, "static", {1, 0, 0}},
-        StatedTooPrecisely{"driving, heading 5 deg off", "hg1700-paper", "drive", {0, 0, 5}},
-        StatedTooPrecisely{"driving, heading 20 deg off", "hg1700-paper", "drive", {0, 0, -20}}}) {
+  for (const StatedTooPrecisely& c : {StatedTooPrecisely{"standing, roll 1 deg off", std::nullopt, {1, 0, 0}},
+                                      StatedTooPrecisely{"driving, heading 5 deg off", "hg1700-paper", {0, 0, 5}},
+                                      StatedTooPrecisely{"driving, heading 20 deg off", "hg1700-paper", {0, 0, -20}}}) {
     SCOPED_TRACE(c.what);
-    sim::SimRequest req;
-    req.seed = 7;
-    req.duration_s = 360.0;
-    req.scenario = c.scenario;
+    sim::SimRequest req = test::gyro_noise_only_request(0.04);
     if (c.grade) {
+      req.custom_grade.reset();
       req.grade = *c.grade;
-    } else {
-      sim::ImuGrade grade;
-      grade.name = "gyro-white-noise-only";
-      grade.gyro.white_N = Vec3::Constant(0.04 * kDegToRad / 60.0);
-      req.custom_grade = grade;
+      req.scenario = "drive";
     }
     sim::SimResult sim = sim::simulate(req);
     sim.kfgins.init_att_std_rad = Vec3(0.01, 0.01, 0.05) * kDegToRad;

@@ -39,16 +39,8 @@ test::Accuracy run_with(const sim::SimResult& sim, const Vec3& configured_q_rad)
 
 TEST(GyroQuantization, GivenThe3dmGx2sPrintedQ_ThenTheAttitudeErrorIsInsideTheReportedCovariance) {
   const double q_rad = 0.18 * kDegToRad;  // Table 9, gyro X and Z as printed
-  sim::SimRequest req;
-  req.seed = 7;
-  req.duration_s = 360.0;
-  req.scenario = "static";
-  sim::ImuGrade grade;
-  grade.name = "gyro-q-and-n";
-  grade.gyro.quantization_Q = Vec3::Constant(q_rad);
   // With its white noise as in Table 9 (3.54 deg/sqrt(h)), which the filter is configured with.
-  grade.gyro.white_N = Vec3::Constant(3.54 * kDegToRad / 60.0);
-  req.custom_grade = grade;
+  const sim::SimRequest req = test::gyro_noise_only_request(3.54, q_rad);
   sim::SimResult sim = sim::simulate(req);
   std::printf("configured initial attitude std %.3g %.3g %.3g deg\n", sim.kfgins.init_att_std_rad.x() * kRadToDeg,
               sim.kfgins.init_att_std_rad.y() * kRadToDeg, sim.kfgins.init_att_std_rad.z() * kRadToDeg);

@@ -64,7 +64,9 @@ TEST(ResyncStudy, AnInitialAttitudeStatedFarTooPreciselyNeverRunsAway) {
         EXPECT_LT(worst_last_minute_m, 0.1);
         EXPECT_LE(s.faults.gate_rejections, 20);
         // Driving, the attitude converges; standing, the heading is unobservable and keeps its error.
-        if (std::string(scenario) == "drive") EXPECT_LT(att_deg.norm(), 0.1);
+        if (std::string(scenario) == "drive") {
+          EXPECT_LT(att_deg.norm(), 0.1);
+        }
       }
     }
   }
