@@ -5,6 +5,7 @@
 // did not identify (R) never resolved.
 #include "tests/toolbox_allan/paper_sensor_study.hpp"
 
+using namespace ldv::allan;
 using namespace ldv::allan::test;
 
 TEST(PaperSensors, Gx2AsPrintedFiveHoursThreeSeedsMeetTheCriteriaTheRecordAllows) {
@@ -18,5 +19,44 @@ TEST(PaperSensors, Gx2AsPrintedFiveHoursThreeSeedsMeetTheCriteriaTheRecordAllows
     if (a.truth.channel.rfind("accel_", 0) != 0) continue;
     for (PaperTerm t : {PaperTerm::kN, PaperTerm::kGmSigma, PaperTerm::kK})
       EXPECT_TRUE(reachable(a[t], t)) << a.truth.channel << " " << term_name(t);
+  }
+}
+
+TEST(PaperSensors, AForcedGaussMarkovThatIsWhiteWhereNShowsIsFoldedIntoN) {
+  // The gyros Z of the 3DM-GX2 (Q in degrees, then the GM: N dominant nowhere on the Allan curve) and of the
+  // HG1700 (Q 16.7 arcsec over N 0.045 deg/sqrt(h), no bias term), with the GM forced. The curve fit did not
+  // resolve N on these records (seeds 7 and 11 of the 20-seed study), so T was searched from 5 blocks: a GM of
+  // T 0.13-0.5 s, white up to where Q hides N (2 sigma^2 T of density), took N 12-14 % low (0.856, 0.879 of the
+  // truth), its interval down to 0.52 and 0. The record measures N to 1.0 % and 0.6 % (Cramer-Rao): checked, N
+  // within 3 % (the criterion) and inside its 95 % interval, that interval no more than 10 % below the
+  // truth, and the GM not resolved where the sensor has none.
+  struct Record {
+    const char* grade;
+    double hours, rate_hz;
+    uint64_t seed;
+  };
+  for (const Record& rec : {Record{"3dm-gx2-paper", 5.0, 20.0, 5007u}, Record{"hg1700-paper", 16.0, 100.0, 5011u}}) {
+    const ldv::sim::ImuGrade grade = ldv::sim::imu_grade(rec.grade);
+    const AxisTruth truth = axes_of(grade)[2];
+    const std::vector<PhaseSeries> channels = simulate_static_channels(grade, rec.hours, rec.rate_hz, rec.seed);
+    AnalysisOptions forced;
+    forced.fit_options.gauss_markov = true;
+    forced.fit_options.choose_bias_model = false;
+    const ChannelResult r = analyze({channels[2]}, forced).front();
+    ASSERT_TRUE(r.fit);
+    ASSERT_EQ(r.fit->method, "whittle") << r.likelihood_error;
+    const TermEstimate& n = (*r.fit)[ModelTerm::kN];
+    const TermEstimate& gm = (*r.fit)[ModelTerm::kGaussMarkov];
+    const double n_true = truth[PaperTerm::kN];
+    std::printf("%s gyro_z seed %lu: N %.4f of the truth [%.4f, %.4f]; GM %.3g (T %.3g s) %s\n", rec.grade,
+                static_cast<unsigned long>(rec.seed), n.value / n_true, n.lo / n_true, n.hi / n_true, gm.value,
+                gm.shape, gm.resolved ? "resolved" : "not resolved");
+    EXPECT_NEAR(n.value / n_true, 1.0, kTolN) << rec.grade;
+    EXPECT_LE(n.lo, n_true) << rec.grade;
+    EXPECT_GE(n.hi, n_true) << rec.grade;
+    EXPECT_GT(n.lo / n_true, 0.9) << rec.grade;
+    if (truth[PaperTerm::kGmSigma] == 0) {
+      EXPECT_FALSE(gm.resolved) << rec.grade;
+    }
   }
 }
