@@ -516,9 +516,10 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
     const double white = sol.c(n_term - mod.terms.begin()) + 2.0 * sol.c(gm_index) * mod.gm_t_s;
     const double resolution = gm_resolution(p, mod.fixed, white);
     if (resolution > mod.gm_resolution_s && mod.gm_t_s <= resolution / M_PI) {
-      mod.gm_resolution_s = resolution;
-      Solution again = maximise(mod, p, start, gm_index);
-      if (again.c.allFinite() && std::isfinite(again.log_likelihood)) sol = std::move(again);
+      Model refit = mod;  // maximise moves T and the densities: kept only with a finite maximum
+      refit.gm_resolution_s = resolution;
+      Solution again = maximise(refit, p, start, gm_index);
+      if (again.c.allFinite() && std::isfinite(again.log_likelihood)) mod = std::move(refit), sol = std::move(again);
     }
   }
   // A Gauss-Markov term still pulled to its shortest T is white noise where N shows (density
