@@ -528,6 +528,9 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
   const double gm_t_min = gm_min_time_constant(mod.gm_resolution_s);
   bool gm_folded = false;
   double gm_folded_sigma_c = 0.0;
+  Model folded_with_gm;          // the model with the folded GM in it (at the floor's T), for its profile
+  Solution folded_with_gm_at_0;  // the folded fit as a solution of that model (GM at 0)
+  int folded_gm_index = -1;
   if (gm_index >= 0 && sol.c(gm_index) > 0 && gm_time_constant_at_bound(mod.gm_t_s, mod.gm_resolution_s) &&
       std::find(mod.terms.begin(), mod.terms.end(), ModelTerm::kN) != mod.terms.end()) {
     Model without = mod;
@@ -547,6 +550,10 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
       with.push_back(gm_index);
       gm_folded_sigma_c =
           std::sqrt(std::max(0.0, fisher_covariance(mod, p, c_full, with, gm_index)(with.size() - 1, with.size() - 1)));
+      folded_with_gm = mod;
+      folded_with_gm_at_0.c = c_full;
+      folded_with_gm_at_0.log_likelihood = folded.log_likelihood;
+      folded_gm_index = gm_index;
       mod = std::move(without);
       sol = std::move(folded);
       gm_index = -1;
@@ -670,6 +677,12 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
     t.shape_sigma = 0.0;
     t.shape_lo = t.shape_hi = 0.0;
     set_term_interval(t, 0.0, gm_folded_sigma_c, z);
+    // The upper end from the profile over every T the search allows, not from the information at the floor
+    // alone: the fold is decided where the GM is white, but a slower GM of some size may stand in for K. Forced
+    // GM, 3DM-GX2 gyro Z, seed 7 of the study: folded, and the end at the floor's T missed the true sigma.
+    const auto [lo_unused, hi_c] = profile_interval(folded_with_gm, p, folded_with_gm_at_0, folded_gm_index, drop,
+                                                    gm_folded_sigma_c, gm_search_range(folded_with_gm, p));
+    if (std::isfinite(hi_c)) t.hi = std::max(t.hi, std::sqrt(hi_c));
     t.resolved = false;
   }
   for (ModelTerm term : mod.terms) {
