@@ -524,7 +524,7 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
   }
   // A Gauss-Markov term still pulled to its shortest T is white noise where N shows (density
   // 2 sigma^2 T): fold it into N by refitting without it, and report it absent (value 0, T at the
-  // bound, the upper end of its interval from its information there).
+  // bound, the upper end of its interval from its profile over T).
   const double gm_t_min = gm_min_time_constant(mod.gm_resolution_s);
   bool gm_folded = false;
   double gm_folded_sigma_c = 0.0;
