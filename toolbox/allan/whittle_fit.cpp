@@ -4,14 +4,15 @@
 #include <cmath>
 #include <complex>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <unsupported/Eigen/FFT>
 #include <utility>
 #include <vector>
 
-#include "toolbox/allan/block_spectrum.hpp"
 #include "common/math/chi_square.hpp"
+#include "toolbox/allan/block_spectrum.hpp"
 #include "toolbox/allan/nonnegative_lsq.hpp"
 
 namespace ldv::allan {
@@ -512,7 +513,8 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
   // on the 3DM-GX2 gyro Z and the HG1700 gyro Z (one or two seeds of 20 each). A GM with its corner below that
   // frequency has a shape the data see (the HG1900 accelerometers, T 4-9 s found for 28-33 s) and is kept.
   const auto n_term = std::find(mod.terms.begin(), mod.terms.end(), ModelTerm::kN);
-  if (!n_present && gm_index >= 0 && n_term != mod.terms.end() && sol.c(gm_index) > 0) {
+  const bool n_in_model = n_term != mod.terms.end();
+  if (!n_present && gm_index >= 0 && n_in_model && sol.c(gm_index) > 0) {
     const double white = sol.c(n_term - mod.terms.begin()) + 2.0 * sol.c(gm_index) * mod.gm_t_s;
     const double resolution = gm_resolution(p, mod.fixed, white);
     if (resolution > mod.gm_resolution_s && mod.gm_t_s <= resolution / M_PI) {
@@ -526,13 +528,15 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
   // 2 sigma^2 T): fold it into N by refitting without it, and report it absent (value 0, T at the
   // bound, the upper end of its interval from its profile over T).
   const double gm_t_min = gm_min_time_constant(mod.gm_resolution_s);
-  bool gm_folded = false;
-  double gm_folded_sigma_c = 0.0;
-  Model folded_with_gm;          // the model with the folded GM in it (at the floor's T), for its profile
-  Solution folded_with_gm_at_0;  // the folded fit as a solution of that model (GM at 0)
-  int folded_gm_index = -1;
+  struct FoldedGm {
+    Model with_gm;         // the model with the GM in it, at the floor's T, for its sigma's profile
+    Solution at_zero;      // the folded fit as a solution of that model (GM at 0)
+    int index = -1;        // the GM's term in with_gm
+    double sigma_c = 0.0;  // the Fisher sigma of its squared coefficient there
+  };
+  std::optional<FoldedGm> folded_gm;
   if (gm_index >= 0 && sol.c(gm_index) > 0 && gm_time_constant_at_bound(mod.gm_t_s, mod.gm_resolution_s) &&
-      std::find(mod.terms.begin(), mod.terms.end(), ModelTerm::kN) != mod.terms.end()) {
+      n_in_model) {
     Model without = mod;
     without.terms.erase(without.terms.begin() + gm_index);
     Eigen::VectorXd start_without(without.terms.size());
@@ -548,16 +552,12 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
       for (int j = 0; j < c_full.size(); ++j)
         if (c_full(j) > 0 && j != gm_index) with.push_back(j);
       with.push_back(gm_index);
-      gm_folded_sigma_c =
+      const double sigma_c =
           std::sqrt(std::max(0.0, fisher_covariance(mod, p, c_full, with, gm_index)(with.size() - 1, with.size() - 1)));
-      folded_with_gm = mod;
-      folded_with_gm_at_0.c = c_full;
-      folded_with_gm_at_0.log_likelihood = folded.log_likelihood;
-      folded_gm_index = gm_index;
+      folded_gm = FoldedGm{mod, Solution{c_full, folded.log_likelihood, folded.iterations}, gm_index, sigma_c};
       mod = std::move(without);
       sol = std::move(folded);
       gm_index = -1;
-      gm_folded = true;
     }
   }
 
@@ -670,18 +670,18 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
     t.resolved =
         sol.c(j) > 2.0 * std::max(sigma_c[j], sigma_free[j]) && dominant_somewhere(mod.terms[j], sol.c(j), t.shape);
   }
-  if (gm_folded) {  // folded into N: absent, with only an upper end to its interval
+  if (folded_gm) {  // folded into N: absent, with only an upper end to its interval
     TermEstimate& t = out[ModelTerm::kGaussMarkov];
     t.in_model = true;
     t.shape = gm_t_min;
     t.shape_sigma = 0.0;
     t.shape_lo = t.shape_hi = 0.0;
-    set_term_interval(t, 0.0, gm_folded_sigma_c, z);
+    set_term_interval(t, 0.0, folded_gm->sigma_c, z);
     // The upper end from the profile over every T the search allows, not from the information at the floor
     // alone: the fold is decided where the GM is white, but a slower GM of some size may stand in for K. Forced
     // GM, 3DM-GX2 gyro Z, seed 7 of the study: folded, and the end at the floor's T missed the true sigma.
-    const auto [lo_unused, hi_c] = profile_interval(folded_with_gm, p, folded_with_gm_at_0, folded_gm_index, drop,
-                                                    gm_folded_sigma_c, gm_search_range(folded_with_gm, p));
+    const auto [lo_unused, hi_c] = profile_interval(folded_gm->with_gm, p, folded_gm->at_zero, folded_gm->index, drop,
+                                                    folded_gm->sigma_c, gm_search_range(folded_gm->with_gm, p));
     if (std::isfinite(hi_c)) t.hi = std::max(t.hi, std::sqrt(hi_c));
     t.resolved = false;
   }
