@@ -174,10 +174,8 @@ inline void set_bounds(AxisTally& a, double tau0_s, long samples, double block_s
   levels.gm_sigma = a.truth[PaperTerm::kGmSigma], levels.gm_t_s = a.truth[PaperTerm::kGmT];
   levels.r = a.truth[PaperTerm::kR];
   const RelativeBounds b = whittle_cramer_rao(levels, tau0_s, samples, block_s);
-  a[PaperTerm::kN].crb = b.n, a[PaperTerm::kK].crb = b.k;
+  a[PaperTerm::kQ].crb = b.q, a[PaperTerm::kN].crb = b.n, a[PaperTerm::kK].crb = b.k;
   a[PaperTerm::kGmSigma].crb = b.gm_sigma, a[PaperTerm::kGmT].crb = b.gm_t;
-  // Q lives at the shortest tau: its bound from the raw samples (Q is taken from the Allan curve, which has them).
-  if (levels.q > 0) a[PaperTerm::kQ].crb = whittle_cramer_rao(levels, tau0_s, samples, tau0_s, true).q;
 }
 
 // A tolerance met in 90 % of seeds needs a relative 1-sigma of tolerance / 1.645 (normal errors).

@@ -65,3 +65,31 @@ TEST(PaperSensors, AForcedGaussMarkovThatIsWhiteWhereNShowsIsFoldedIntoN) {
     }
   }
 }
+
+TEST(PaperSensors, AQuantisationWeakAgainstTheWhiteNoiseIsEstimatedWithIt_SoNsIntervalHoldsTheTruth) {
+  // The 3DM-GX2 accelerometer X: Q is 3-5 % of N's Allan deviation at tau0, and the record bounds it only to
+  // 2.7x its value (Cramer-Rao): any estimate of Q is 0 or several times the truth, and N trades against it.
+  // With Q held at the curve fit's value (N's interval widened by the curve's sigma of Q, none at Q = 0), N's
+  // 95 % interval held the truth in 7 of these 10 records (the study's seeds 1-10). With Q estimated in the
+  // likelihood beside N, N's profile interval is over Q too. 9 of 10 asked: a calibrated interval meets it in
+  // 91 % of sets of 10.
+  const ldv::sim::ImuGrade grade = ldv::sim::imu_grade("3dm-gx2-paper");
+  const AxisTruth truth = axes_of(grade)[3];
+  ASSERT_EQ(truth.channel, "accel_x");
+  const double n_true = truth[PaperTerm::kN];
+  int inside = 0;
+  const int seeds = 10;
+  for (int seed = 1; seed <= seeds; ++seed) {
+    const std::vector<PhaseSeries> channels = simulate_static_channels(grade, 5.0, 20.0, 5000u + seed);
+    const ChannelResult r = analyze({channels[3]}, AnalysisOptions{}).front();
+    ASSERT_TRUE(r.fit);
+    ASSERT_EQ(r.fit->method, "whittle") << r.likelihood_error;
+    const TermEstimate& n = (*r.fit)[ModelTerm::kN];
+    inside += n.lo <= n_true && n_true <= n.hi;
+    std::printf("accel_x seed %d: N %.4f of the truth [%.4f, %.4f]; Q %.2f of the truth (curve fit %.2f)\n", seed,
+                n.value / n_true, n.lo / n_true, n.hi / n_true, (*r.fit)[ModelTerm::kQ].value / truth[PaperTerm::kQ],
+                (*r.curve_fit)[ModelTerm::kQ].value / truth[PaperTerm::kQ]);
+    EXPECT_NEAR(n.value / n_true, 1.0, kTolN);
+  }
+  EXPECT_GE(inside, seeds - 1);
+}

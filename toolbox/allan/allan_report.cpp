@@ -144,20 +144,13 @@ void print_tables(std::FILE* out, const std::vector<ChannelResult>& results) {
       std::fprintf(out, "  sine amplitude %.5g %s at %.5g Hz (%s)\n", sine.value, r.unit.c_str(), sine.shape,
                    sine.resolved ? "resolved" : "not resolved");
     }
-    std::vector<std::string> widened;  // what the intervals carry beyond the fit's own information
-    if (r.n_sigma_from_held_q > 0.0) {
-      const EngineeringUnit un = paper_unit(q, Term::kN);
-      char buf[160];
-      std::snprintf(buf, sizeof buf, "N's includes %.3g %s (1 sigma) from the uncertainty of the Q it holds",
-                    r.n_sigma_from_held_q * un.from_si, un.name);
-      widened.push_back(buf);
-    }
+    // What the intervals carry beyond the fit's own information.
     const bool n_both = r.n_interval_spans_both_bias_models, k_both = r.k_interval_spans_both_bias_models;
     if (n_both || k_both)
-      widened.push_back(std::string(n_both && k_both ? "N's and K's span" : n_both ? "N's spans" : "K's spans") +
-                        " both bias models' (the models are close: |BIC flat - GM| < ln n)");
-    for (size_t i = 0; i < widened.size(); ++i)
-      std::fprintf(out, "%s%s%s", i ? "; " : "  intervals: ", widened[i].c_str(), i + 1 == widened.size() ? "\n" : "");
+      std::fprintf(out, "  intervals: %s both bias models' (the models are close: |BIC flat - GM| < ln n)\n",
+                   n_both && k_both ? "N's and K's span"
+                   : n_both         ? "N's spans"
+                                    : "K's spans");
     if (r.information) {
       const RecordInformation& info = *r.information;
       const bool gm = f[ModelTerm::kGaussMarkov].in_model;
@@ -219,8 +212,8 @@ void write_json(const std::string& path, const std::string& input, const std::ve
           << "_resolved\": " << (t.resolved ? "true" : "false") << ", \"" << n
           << "_modelled\": " << (t.in_model ? "true" : "false");
       }
-      o << ",\n      \"N_sigma_from_held_Q\": " << num(r.n_sigma_from_held_q)
-        << ", \"N_interval_spans_both_bias_models\": " << (r.n_interval_spans_both_bias_models ? "true" : "false")
+      o << ",\n      \"N_interval_spans_both_bias_models\": "
+        << (r.n_interval_spans_both_bias_models ? "true" : "false")
         << ", \"K_interval_spans_both_bias_models\": " << (r.k_interval_spans_both_bias_models ? "true" : "false");
       o << ",\n      \"B_tau_s\": " << num(f.b_tau_s) << ", \"B_model\": " << quoted(gm ? "gauss_markov" : "flat")
         << ", \"B_T_s\": " << num(gm ? f[ModelTerm::kGaussMarkov].shape : 0.0)

@@ -70,13 +70,6 @@ FitAttempt fit_channel(const PhaseSeries& s, const std::vector<StabilityPoint>& 
   return a;
 }
 
-// Widens a term's 1-sigma and interval by an independent 1-sigma `extra` (z: the interval's normal quantile).
-void widen(TermEstimate& t, double extra, double z) {
-  t.sigma = std::hypot(t.sigma, extra);
-  t.lo = std::max(0.0, t.value - std::hypot(t.value - t.lo, z * extra));
-  t.hi = t.value + std::hypot(t.hi - t.value, z * extra);
-}
-
 // A Gauss-Markov the data hold apart from the other terms: its sigma's interval excludes 0, and its T's
 // interval stays above the shortest T (a GM that may be that short is white where N shows, N's double).
 bool gm_stands_out(const NoiseFit& fit, double gm_resolution_s) {
@@ -177,9 +170,6 @@ ChannelResult analyze_channel(const PhaseSeries& s, const AnalysisOptions& opt) 
         r.curve_fit = std::move(chosen.curve);
         r.fit = std::move(chosen.refined);
         r.likelihood = chosen.summary;
-        const double z = math::normal_quantile(0.5 + 0.5 * fo.interval_confidence);
-        r.n_sigma_from_held_q = r.likelihood->n_sigma_from_held_q;
-        if (r.n_sigma_from_held_q > 0.0) widen((*r.fit)[ModelTerm::kN], r.n_sigma_from_held_q, z);
         // A close choice: N's and K's intervals span both models' (each term is in both).
         const auto span_both = [&](ModelTerm term) {
           TermEstimate& t = (*r.fit)[term];

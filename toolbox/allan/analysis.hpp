@@ -72,10 +72,8 @@ struct ChannelResult {
   std::optional<RecordInformation> information;  // with the likelihood fit: bounds, record needed
   std::string likelihood_error;
   std::optional<BiasModelChoice> bias_model;  // with a fit: how its bias model was chosen
-  // What the likelihood fit's intervals carry beyond its own Fisher information (README.md, "Intervals"):
-  // N's 1-sigma from the uncertainty of the Q it holds, added in quadrature to N's sigma and interval;
-  double n_sigma_from_held_q = 0.0;
-  // and, when the bias models are close in BIC (close_bias_model_bic; whichever AIC took), N's and K's intervals
+  // What the likelihood fit's intervals carry beyond its own Fisher information (README.md, "Intervals"): when
+  // the bias models are close in BIC (close_bias_model_bic; whichever AIC took), N's and K's intervals
   // span both models' (each is in both; the flat B and the GM sigma are different quantities and keep their own).
   bool n_interval_spans_both_bias_models = false;
   bool k_interval_spans_both_bias_models = false;

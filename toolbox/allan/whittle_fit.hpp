@@ -9,9 +9,9 @@
 // S(nu) = sum of coefficient^2 x block_difference_density (block_spectrum.hpp), and the likelihood
 // weighs each of them by what it says.
 //
-// Terms: N, B (flat) or the Gauss-Markov bias (sigma, T), K are estimated; Q is held at the curve
-// fit's value (it lives at the shortest tau, where the curve is already efficient); R, a ramp, is a
-// constant in the differences: estimated from their taper-weighted mean against the noise the
+// Terms: Q, N, B (flat) or the Gauss-Markov bias (sigma, T), K are estimated together (Q is not held at the
+// curve fit's value: where it is weak against N, no record pins it, and N's interval must be over Q too); R,
+// a ramp, is a constant in the differences: estimated from their taper-weighted mean against the noise the
 // other terms put there. Not with a sinusoid in the model (a spectral line, not a density).
 #include "toolbox/allan/avar_covariance.hpp"
 #include "toolbox/allan/noise_fit.hpp"
@@ -22,27 +22,24 @@ namespace ldv::allan {
 struct WhittleSummary {
   double block_s = 0.0;  // tau_b: the rate is averaged over blocks of this length
   // The finest time scale at which a Gauss-Markov's shape can be told from white noise: block_s, or longer
-  // where the held Q hides N above some frequency. T is searched from kGaussMarkovMinResolution times it.
+  // where Q hides N above some frequency. T is searched from kGaussMarkovMinResolution times it.
   double gm_resolution_s = 0.0;
   long ordinates = 0;    // Fourier ordinates used (frequency 0 and Nyquist excluded)
   double log_likelihood = 0.0;
   int iterations = 0;  // scoring iterations at the final Gauss-Markov time constant
-  // Free parameters of the model as fitted: the estimated densities (N, B or GM sigma, K) plus the
+  // Free parameters of the model as fitted: the estimated densities (Q, N, B or GM sigma, K) plus the
   // GM time constant when the model has a GM (counted even when the GM came out absent / folded:
-  // the model searched over it). Q (held) and R (not a density) are not counted.
+  // the model searched over it). R (not a density) is not counted.
   int parameters = 0;
   // The taper's variance factor (n sum h^4 / (sum h^2)^2, about 1.12): the tapered log-likelihood is
   // that much sharper than the information it holds, so likelihood ratios are divided by it.
   double taper_variance_factor = 1.0;
-  // N's 1-sigma from the uncertainty of the Q held at the curve fit's value (the Fisher information with Q free
-  // under that uncertainty, less the information at Q held); not in N's own sigma and interval.
-  double n_sigma_from_held_q = 0.0;
 };
 
 // `curve`: the Allan-curve fit of the same series (start values, Q and R, slope lines, misfit).
-// Returns `curve` with N, B / GM, K and R replaced by their likelihood estimates (value, sigma,
-// interval, resolved; sigmas from the Fisher information, intervals from the profile likelihood). Throws std::invalid_argument when the
-// series gives fewer than 64 blocks or the model has a sinusoid.
+// Returns `curve` with Q, N, B / GM, K and R replaced by their likelihood estimates (value, sigma,
+// interval, resolved; sigmas from the Fisher information, intervals from the profile likelihood). Throws
+// std::invalid_argument when the series gives fewer than 64 blocks or the model has a sinusoid.
 NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptions& opt, double block_s,
                      WhittleSummary* summary = nullptr);
 
@@ -51,14 +48,9 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
 // information of the tapered Whittle likelihood, the information the raw record holds). Terms at 0
 // are not in the model and get 0; R is not a density (0). `gm_t` is the relative sd of T.
 struct RelativeBounds {
-  double n = 0.0, b = 0.0, k = 0.0, gm_sigma = 0.0, gm_t = 0.0;
-  // Q's bound with Q free (the fit holds it at the curve fit's value, which cannot do better), only with
-  // `bound_q`; the other terms' bounds stay at Q held, as the fit has them. Pass block_s = tau0 for the
-  // information of the raw samples.
-  double q = 0.0;
+  double q = 0.0, n = 0.0, b = 0.0, k = 0.0, gm_sigma = 0.0, gm_t = 0.0;
 };
-RelativeBounds whittle_cramer_rao(const NoiseLevels& truth, double tau0_s, long samples, double block_s,
-                                  bool bound_q = false);
+RelativeBounds whittle_cramer_rao(const NoiseLevels& truth, double tau0_s, long samples, double block_s);
 
 // What a record of this sensor tells about its terms, taking the fit as the truth: the bound now
 // and the record length [h] at which each resolved term reaches `target` (relative 1-sigma);
