@@ -481,6 +481,7 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
   // by the curve fit's sigma of Q (none at Q = 0), held the true N in 17 of 20 records; estimated together, N's
   // profile interval is over Q too: 19 of 20.
   const bool q_in_model = opt.q && curve[ModelTerm::kQ].in_model;
+  const int q_index = q_in_model ? 0 : -1;  // Q first among the terms when it is in the model
   if (q_in_model) mod.terms.push_back(ModelTerm::kQ);
   if (opt.n) mod.terms.push_back(ModelTerm::kN);
   if (opt.b && !opt.gauss_markov) mod.terms.push_back(ModelTerm::kB);
@@ -491,13 +492,14 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
     mod.terms.push_back(ModelTerm::kGaussMarkov);
     mod.gm_t_s = curve[ModelTerm::kGaussMarkov].shape;
   }
-  if (mod.terms.empty()) throw std::invalid_argument("likelihood fit: none of N, B, K in the model");
+  if (mod.terms.empty()) throw std::invalid_argument("likelihood fit: none of Q, N, B, K in the model");
   const int parameters = static_cast<int>(mod.terms.size()) + (gm_index >= 0 ? 1 : 0);
   mod.fixed = Eigen::VectorXd::Zero(static_cast<long>(p.nu.size()));
   set_densities(mod, p);
   // Q's density at a squared coefficient c_q (0 without Q in the model), for the frequency where it passes N's.
   auto q_density = [&](double c_q) -> Eigen::VectorXd {
-    return q_in_model ? Eigen::VectorXd(c_q * mod.density.col(0)) : Eigen::VectorXd(mod.fixed);
+    if (q_index < 0) return Eigen::VectorXd::Zero(static_cast<long>(p.nu.size()));
+    return c_q * mod.density.col(q_index);
   };
   const double q_curve = q_in_model ? curve[ModelTerm::kQ].value : 0.0;
   // Only an N the curve fit resolved (significant and dominant at some tau): a sensor without white noise (the
@@ -533,7 +535,7 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
   const bool n_in_model = n_term != mod.terms.end();
   if (!n_present && gm_index >= 0 && n_in_model && sol.c(gm_index) > 0) {
     const double white = sol.c(n_term - mod.terms.begin()) + 2.0 * sol.c(gm_index) * mod.gm_t_s;
-    const double resolution = gm_resolution(p, q_density(q_in_model ? sol.c(0) : 0.0), white);
+    const double resolution = gm_resolution(p, q_density(q_index >= 0 ? sol.c(q_index) : 0.0), white);
     if (resolution > mod.gm_resolution_s && mod.gm_t_s <= resolution / M_PI) {
       Model refit = mod;  // maximise moves T and the densities: kept only with a finite maximum
       refit.gm_resolution_s = resolution;
