@@ -158,19 +158,24 @@ void NavFilter::take_snapshot() {
   while (snapshots_.size() > 1 && snapshots_[1].nav.t_s < c_.nav.t_s - opt_.history_s) snapshots_.pop_front();
 }
 
-void NavFilter::coast_over_imu_gap(double t_end_s) {
+void NavFilter::coast_over_imu_gap(double hole_start_s, double t_end_s) {
   flush_covariance();
-  const double gap_s = t_end_s - c_.nav.t_s;
+  const double from_s = c_.nav.t_s - hole_start_s, to_s = t_end_s - hole_start_s;
   NavState s = c_.nav;
-  s.pos = earth::offset_ned(s.pos, s.v_n_mps * std::min(gap_s, kGapMaxDeadReckoning_s));
+  s.pos = earth::offset_ned(
+      s.pos, s.v_n_mps * (std::min(to_s, kGapMaxDeadReckoning_s) - std::min(from_s, kGapMaxDeadReckoning_s)));
   s.t_s = t_end_s;
-  const auto grown = [](double rate, double gap, double cap) { return std::pow(std::min(rate * gap, cap), 2); };
-  const double var_pos = grown(0.5 * kGapAccelStd_mps2 * gap_s, gap_s, kGapMaxPosStd_m);
-  const double var_vel = grown(kGapAccelStd_mps2, gap_s, kGapMaxVelStd_mps);
+  // The standard deviations a hole opens in its first t seconds; a piece of it adds its share of the variance.
+  const auto opened = [&](auto std_after, double cap) {
+    return std::pow(std::min(std_after(to_s), cap), 2) - std::pow(std::min(std_after(from_s), cap), 2);
+  };
+  const double var_pos = opened([](double t) { return 0.5 * kGapAccelStd_mps2 * t * t; }, kGapMaxPosStd_m);
+  const double var_vel = opened([](double t) { return kGapAccelStd_mps2 * t; }, kGapMaxVelStd_mps);
+  const auto turned = [](double t) { return kGapTurnRateStd_rad_s * t; };
   for (int i = 0; i < 3; ++i) {
     c_.P(kPos + i, kPos + i) += var_pos;
     c_.P(kVel + i, kVel + i) += var_vel;
-    c_.P(kAtt + i, kAtt + i) += grown(kGapTurnRateStd_rad_s, gap_s, i < 2 ? kGapMaxTiltStd_rad : kGapMaxYawStd_rad);
+    c_.P(kAtt + i, kAtt + i) += opened(turned, i < 2 ? kGapMaxTiltStd_rad : kGapMaxYawStd_rad);
   }
   c_.nav = s;
   c_.mech.reset(s);
@@ -190,7 +195,17 @@ void NavFilter::process_imu(const ImuIncrement& raw) {
     in.dt_s = interval_s;
     c_.status |= kStatusImuGap;
     ++faults_.imu_gaps;
-    if (t_end - interval_s > t0) coast_over_imu_gap(t_end - interval_s);
+    // The fixes that arrived during the hole are applied at their own epochs, each on the state coasted to it:
+    // applied at its end, the oldest would pull the state back by the distance driven since (20 m after 2 s at 10 m/s).
+    const double coast_to_s = t_end - interval_s;
+    while (!pending_.empty() && pending_.front().t_s() - c_.model.time_offset_s < coast_to_s - kSplitTolerance_s) {
+      const double t_m = pending_.front().t_s() - c_.model.time_offset_s;
+      if (t_m > c_.nav.t_s + kSplitTolerance_s) coast_over_imu_gap(t0, t_m);
+      const Event event = pending_.front();
+      pending_.pop_front();
+      apply_event(event);
+    }
+    if (coast_to_s > c_.nav.t_s) coast_over_imu_gap(t0, coast_to_s);
   } else {
     c_.imu_interval_s = in.dt_s;
   }

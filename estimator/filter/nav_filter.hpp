@@ -144,7 +144,9 @@ class NavFilter {
 
   void process_imu(const ImuIncrement& raw);
   void propagate_sample(const ImuIncrement& raw_part);
-  void coast_over_imu_gap(double t_end_s);
+  // Coasts from the state's epoch to t_end_s inside a hole in the IMU data that began at hole_start_s: the
+  // uncertainty opens by what the hole's length so far allows, whichever pieces it is coasted in.
+  void coast_over_imu_gap(double hole_start_s, double t_end_s);
   void adapt_imu_noise(const InnovationRecord& rec);
   void flush_covariance();
   void run_aids();

@@ -282,6 +282,55 @@ namespace {
 // The configuration ldv sim writes for a grade carries geoldv51's moving bias per term (B with its time
 // constant, K, R), and options_from_kfgins reads them: the Gauss-Markov is B alone (imunoise's gbstd merges K
 // into it), K drives the random walk, R is the ramp rate's prior. A malformed value names its key and line.
+// An IMU stream that stops for 2 s (its acquisition service restarted) while the fixes keep coming, on a vehicle
+// driving north at 10 m/s: the fixes that arrived during the hole hold the vehicle's position at their own epochs.
+// Applied at the end of the hole instead, the oldest are 2 s (20 m) behind the vehicle: the vehicle-system fault
+// test saw 19.5 m in the first second after such a restart.
+TEST(Faults, FixesThatArriveDuringAnImuHoleAreAppliedAtTheirOwnEpochs) {
+  constexpr double kSpeed_mps = 10.0, kDt_s = 0.01, kGnssPeriod_s = 0.2, kHole_s = 2.1;
+  NavState s0 = start();
+  s0.v_n_mps = Vec3(kSpeed_mps, 0.0, 0.0);
+  NavFilter f(FilterOptions{});
+  f.initialize(s0, NavStd{});
+  const auto truth = [&](double t) { return earth::offset_ned(s0.pos, Vec3(kSpeed_mps * (t - s0.t_s), 0.0, 0.0)); };
+  const Vec3 earth_rate_b = earth::omega_ie_n(s0.pos.lat_rad);  // level, heading north: body = NED
+  const auto imu = [&](double t) {
+    ImuIncrement inc = static_increment(t, kDt_s);
+    inc.dtheta_b_rad = earth_rate_b * kDt_s;
+    return inc;
+  };
+  const auto fix_at = [&](double t) {
+    GnssFix fix;
+    fix.t_s = t;
+    fix.pos = truth(t);
+    fix.pos_std_ned_m = Vec3::Constant(0.02);
+    return fix;
+  };
+  double t = s0.t_s, next_fix_s = s0.t_s + kGnssPeriod_s;
+  const auto drive_until = [&](double t_end) {
+    while (t < t_end - 1e-9) {
+      f.add_imu(imu(t += kDt_s));
+      if (t >= next_fix_s - 1e-9) {  // a fix reaches fusion just after the IMU sample of its epoch
+        f.add_gnss(fix_at(next_fix_s));
+        next_fix_s += kGnssPeriod_s;
+      }
+    }
+  };
+  drive_until(s0.t_s + 5.0);
+  ASSERT_LT(earth::ned_between(truth(t), f.state().pos).norm(), 0.1);
+  // The hole: the fixes of its 2.1 s arrive, no IMU sample does.
+  const double hole_end_s = t + kHole_s;
+  for (; next_fix_s < hole_end_s - 1e-9; next_fix_s += kGnssPeriod_s) f.add_gnss(fix_at(next_fix_s));
+  t = hole_end_s - kDt_s;
+  double worst_m = 0.0;
+  while (t < hole_end_s + 1.0) {
+    drive_until(t + kDt_s);
+    worst_m = std::max(worst_m, earth::ned_between(truth(t), f.state().pos).norm());
+  }
+  EXPECT_GE(f.faults().imu_gaps, 1);
+  EXPECT_LT(worst_m, 0.5) << "horizontal error in the first second after the hole";
+}
+
 TEST(Faults, TheGradesMovingBiasTermsReachGeoLdv51) {
   sim::SimRequest req;
   req.grade = "hg1900-paper";  // accel: Q + B (T 17, 28, 33 s) + K + R (no R on y)
