@@ -71,7 +71,7 @@ bool describe(const uint8_t* data, int size, std::string& type, std::string& tex
     return true;
   };
   if (fp == ldv_lcm::imu_sample_t::getHash()) {
-    ldv_lcm::imu_sample_t m;
+    ldv_lcm::imu_sample_t m{};
     type = "imu_sample_t";
     if (!decode(m)) return true;
     text = "sow " + fixed(m.gps_sow_s, 4) + " dt " + fixed(m.dt_s * 1e3, 3) + " ms  |w| " +
@@ -81,14 +81,14 @@ bool describe(const uint8_t* data, int size, std::string& type, std::string& tex
            fixed(std::sqrt(m.dvel_b_mps[0] * m.dvel_b_mps[0] + m.dvel_b_mps[1] * m.dvel_b_mps[1] +
                            m.dvel_b_mps[2] * m.dvel_b_mps[2]) / std::max(m.dt_s, 1e-9), 3) + " m/s2";
   } else if (fp == ldv_lcm::gnss_solution_t::getHash()) {
-    ldv_lcm::gnss_solution_t m;
+    ldv_lcm::gnss_solution_t m{};
     type = "gnss_solution_t";
     if (!decode(m)) return true;
     text = "sow " + fixed(m.gps_sow_s, 3) + " " + fixed(m.lat_deg, 8) + " " + fixed(m.lon_deg, 8) + " " +
            fixed(m.height_m, 3) + " Q" + std::to_string(m.fix_quality) + " ns " + std::to_string(m.num_sats) +
            " sdN " + fixed(std::sqrt(std::max(0.0, m.pos_cov_ned_m2[0])), 3);
   } else if (fp == ldv_lcm::nav_state_t::getHash()) {
-    ldv_lcm::nav_state_t m;
+    ldv_lcm::nav_state_t m{};
     type = "nav_state_t";
     if (!decode(m)) return true;
     text = "sow " + fixed(m.gps_sow_s, 3) + " " + fixed(m.lat_deg, 8) + " " + fixed(m.lon_deg, 8) + " " +
@@ -96,33 +96,33 @@ bool describe(const uint8_t* data, int size, std::string& type, std::string& tex
            fixed(m.vel_ned_mps[2], 2) + " yaw " + fixed(m.rpy_deg[2], 2) + " mode " + std::to_string(m.mode) +
            " status 0x" + [&] { std::ostringstream o; o << std::hex << m.status; return o.str(); }();
   } else if (fp == ldv_lcm::tspi_v1_t::getHash()) {
-    ldv_lcm::tspi_v1_t m;
+    ldv_lcm::tspi_v1_t m{};
     type = "tspi_v1_t";
     if (!decode(m)) return true;
     text = "sow " + fixed(m.gps_sow_s, 3) + " " + fixed(m.lat_deg, 8) + " " + fixed(m.lon_deg, 8) + " " +
            fixed(m.height_m, 3) + " std_h " + fixed(std::hypot(m.pos_std_ned_m[0], m.pos_std_ned_m[1]), 3) +
            " q " + std::to_string(m.quality);
   } else if (fp == ldv_lcm::nav_innovation_t::getHash()) {
-    ldv_lcm::nav_innovation_t m;
+    ldv_lcm::nav_innovation_t m{};
     type = "nav_innovation_t";
     if (!decode(m)) return true;
     text = "sow " + fixed(m.gps_sow_s, 3) + " " + sensor_of_code(m.sensor) + " (" + std::to_string(m.dim) +
            " rows) nis " + fixed(m.nis, 2) + (m.accepted ? " accepted" : " REJECTED");
   } else if (fp == ldv_lcm::wheel_speed_t::getHash()) {
-    ldv_lcm::wheel_speed_t m;
+    ldv_lcm::wheel_speed_t m{};
     type = "wheel_speed_t";
     if (!decode(m)) return true;
     const auto v = odometer_speed_from_message(m);
     text = "sow " + fixed(m.gps_sow_s, 3) + " " + std::to_string(m.num_wheels) + " wheel(s) odometer " +
            (v ? fixed(*v, 3) + " m/s" : std::string("unusable")) + " status " + std::to_string(m.status);
   } else if (fp == ldv_lcm::pps_event_t::getHash()) {
-    ldv_lcm::pps_event_t m;
+    ldv_lcm::pps_event_t m{};
     type = "pps_event_t";
     if (!decode(m)) return true;
     text = "sow " + fixed(m.gps_sow_s, 3) + " counter " + std::to_string(m.counter_raw) + " flags " +
            std::to_string(m.flags);
   } else if (fp == ldv_lcm::service_status_t::getHash()) {
-    ldv_lcm::service_status_t m;
+    ldv_lcm::service_status_t m{};
     type = "service_status_t";
     if (!decode(m)) return true;
     text = m.name + " state " + std::to_string(m.state) + " rx " + std::to_string(m.received) + " drop " +
@@ -130,7 +130,7 @@ bool describe(const uint8_t* data, int size, std::string& type, std::string& tex
            [&] { std::ostringstream o; o << std::hex << m.fault_bits; return o.str(); }() + " cpu " +
            fixed(m.cpu_s, 2) + " s";
   } else if (fp == ldv_lcm::imu_timing_t::getHash()) {
-    ldv_lcm::imu_timing_t m;
+    ldv_lcm::imu_timing_t m{};
     type = "imu_timing_t";
     if (!decode(m)) return true;
     text = "interval " + fixed(m.interval_mean_s * 1e3, 5) + " ms +- " + fixed(m.interval_std_s * 1e6, 2) +
