@@ -172,13 +172,19 @@ void NavFilter::coast_over_imu_gap(double hole_start_s, double t_end_s) {
   const double var_pos = opened([](double t) { return 0.5 * kGapAccelStd_mps2 * t * t; }, kGapMaxPosStd_m);
   const double var_vel = opened([](double t) { return kGapAccelStd_mps2 * t; }, kGapMaxVelStd_mps);
   const auto turned = [](double t) { return kGapTurnRateStd_rad_s * t; };
+  const Eigen::VectorXd var_before = c_.P.diagonal();
   for (int i = 0; i < 3; ++i) {
     c_.P(kPos + i, kPos + i) += var_pos;
     c_.P(kVel + i, kVel + i) += var_vel;
     c_.P(kAtt + i, kAtt + i) += opened(turned, i < 2 ? kGapMaxTiltStd_rad : kGapMaxYawStd_rad);
   }
+  const double coasted_s = t_end_s - c_.nav.t_s;
   c_.nav = s;
   c_.mech.reset(s);
+  if (observer_.p && observer_.p->wants_matrices()) {  // to a smoother, a piece of the hole is an epoch of its own
+    const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(c_.P.rows(), c_.P.cols());
+    observer_.p->on_propagation(t_end_s, coasted_s, I, Eigen::MatrixXd((c_.P.diagonal() - var_before).asDiagonal()));
+  }
 }
 
 void NavFilter::process_imu(const ImuIncrement& raw) {

@@ -8,9 +8,10 @@
 
 #include "common/formats/kfgins_config.hpp"
 #include "common/formats/kfgins_files.hpp"
-#include "common/io/input_error.hpp"
 #include "common/geo/earth_model.hpp"
+#include "common/io/input_error.hpp"
 #include "estimator/run/run_navigation.hpp"
+#include "estimator/smooth/rts_recorder.hpp"
 #include "sim/simulator.hpp"
 #include "tests/estimator/sim_run.hpp"
 
@@ -291,6 +292,8 @@ TEST(Faults, FixesThatArriveDuringAnImuHoleAreAppliedAtTheirOwnEpochs) {
   NavState s0 = start();
   s0.v_n_mps = Vec3(kSpeed_mps, 0.0, 0.0);
   NavFilter f(FilterOptions{});
+  RtsRecorder smoother(f);
+  f.set_observer(&smoother);
   f.initialize(s0, NavStd{});
   const auto truth = [&](double t) { return earth::offset_ned(s0.pos, Vec3(kSpeed_mps * (t - s0.t_s), 0.0, 0.0)); };
   const Vec3 earth_rate_b = earth::omega_ie_n(s0.pos.lat_rad);  // level, heading north: body = NED
@@ -310,6 +313,7 @@ TEST(Faults, FixesThatArriveDuringAnImuHoleAreAppliedAtTheirOwnEpochs) {
   const auto drive_until = [&](double t_end) {
     while (t < t_end - 1e-9) {
       f.add_imu(imu(t += kDt_s));
+      smoother.add_row(f, 0);
       if (t >= next_fix_s - 1e-9) {  // a fix reaches fusion just after the IMU sample of its epoch
         f.add_gnss(fix_at(next_fix_s));
         next_fix_s += kGnssPeriod_s;
@@ -329,6 +333,17 @@ TEST(Faults, FixesThatArriveDuringAnImuHoleAreAppliedAtTheirOwnEpochs) {
   }
   EXPECT_GE(f.faults().imu_gaps, 1);
   EXPECT_LT(worst_m, 0.5) << "horizontal error in the first second after the hole";
+  // And smoothed over the hole (the coast's pieces are epochs to the smoother): as close to the truth on both sides.
+  const SmoothedRun run = smoother.smooth();
+  double worst_smoothed_m = 0.0;
+  for (std::size_t i = 0; i < run.size(); ++i) {
+    const SmoothedRow r = run.row(i);
+    if (std::abs(r.smoothed.t_s - (hole_end_s - kHole_s)) > 1.0 && std::abs(r.smoothed.t_s - hole_end_s) > 1.0)
+      continue;
+    worst_smoothed_m = std::max(worst_smoothed_m, earth::ned_between(truth(r.smoothed.t_s), r.smoothed.pos).norm());
+    EXPECT_LE(r.std_smoothed(0), r.std_forward(0) * (1.0 + 1e-9)) << "at " << r.smoothed.t_s;
+  }
+  EXPECT_LT(worst_smoothed_m, 0.1);
 }
 
 TEST(Faults, TheGradesMovingBiasTermsReachGeoLdv51) {
