@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cstring>
 #include <fstream>
-#include <iterator>
 
 #include "common/io/input_error.hpp"
 #include "common/io/text_file_lines.hpp"
@@ -40,10 +39,11 @@ RtklibTimeTag read_rtklib_time_tag(const std::string& path) {
 }
 
 double RtklibTimeTag::reception_gps_s(uint64_t file_pos) const {
-  // The last entry whose chunk starts at or before file_pos received that byte.
+  // The first entry whose chunk ends beyond file_pos received that byte (each entry holds the position after
+  // its chunk; read as the chunk's start, every byte was placed one chunk early: 15 ms on the walk's IMU log).
   auto it = std::upper_bound(entries.begin(), entries.end(), file_pos,
                              [](uint64_t pos, const Entry& e) { return pos < e.file_pos; });
-  const Entry& e = it == entries.begin() ? entries.front() : *std::prev(it);
+  const Entry& e = it == entries.end() ? entries.back() : *it;
   return start_gps_s + e.tick_ms * 1e-3;
 }
 

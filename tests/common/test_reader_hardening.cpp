@@ -12,6 +12,7 @@
 
 #include "common/formats/kfgins_config.hpp"
 #include "common/formats/kfgins_files.hpp"
+#include "common/formats/rtklib_time_tag.hpp"
 #include "common/formats/tagged_imu_csv.hpp"
 #include "common/io/atomic_file.hpp"
 #include "common/io/input_error.hpp"
@@ -194,7 +195,7 @@ TaggedFiles tagged(const std::string& name, const std::vector<std::string>& coun
     csv += body + (file_crlf ? "\r\n" : "\n");
     counted += body.size() + (tag_crlf ? 2 : 1);
     put_u32(tag, static_cast<uint32_t>(10 * i + 3));   // tick of reception [ms]: 3 ms latency
-    put_u32(tag, static_cast<uint32_t>(counted - 1));  // the line's '\n' arrived at that tick
+    put_u32(tag, static_cast<uint32_t>(counted));  // as RTKLIB writes it: the position after the chunk
   }
   return {write_temp(name + ".csv", csv), write_temp(name + ".csv.tag", tag)};
 }
@@ -207,6 +208,25 @@ std::vector<std::string> counters_from(uint64_t first, int n, uint64_t modulo = 
   return c;
 }
 }  // namespace
+
+// Two chunks as RTKLIB's writefile tags them (the position after each write): bytes 0-9 arrived at 100 ms, bytes
+// 10-24 at 200 ms.
+TEST(RtklibTimeTagFile, AByteArrivedWithTheChunkThatEndsBeyondIt) {
+  std::string tag = "TIMETAG RTKLIB EX";
+  tag.resize(60, '\0');
+  put_u32(tag, 0);
+  put_u32(tag, static_cast<uint32_t>(kGpsEpochInUnixSeconds + 1000.0));
+  const double fraction = 0.5;
+  tag.append(reinterpret_cast<const char*>(&fraction), 8);
+  for (const auto& [tick_ms, end_pos] : {std::pair<uint32_t, uint32_t>{100, 10}, {200, 25}}) {
+    put_u32(tag, tick_ms);
+    put_u32(tag, end_pos);
+  }
+  const RtklibTimeTag t = read_rtklib_time_tag(write_temp("two_chunks.tag", tag));
+  EXPECT_DOUBLE_EQ(t.start_gps_s, 1000.5);
+  for (const auto& [byte, at_s] : {std::pair<uint64_t, double>{0, 0.1}, {9, 0.1}, {10, 0.2}, {24, 0.2}, {25, 0.2}})
+    EXPECT_NEAR(t.reception_gps_s(byte) - t.start_gps_s, at_s, 1e-12) << "byte " << byte;
+}
 
 TEST(TaggedCsvCounters, HugeCountersEndAndAbsurdOnesAreRefusedWithTheirLine) {
   auto c = counters_from(18446744073709000000ull, 200);  // close to 2^64: the fit once looped forever

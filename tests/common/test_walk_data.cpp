@@ -1,6 +1,8 @@
 // The real walk (../shared/data/drives/walk_0827): IMU CSV + RTKLIB time tags -> GPS-timed increments.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "common/formats/rtklib_time_tag.hpp"
 #include "common/formats/tagged_imu_csv.hpp"
 #include "common/time/gps_time.hpp"
@@ -18,6 +20,24 @@ TEST(WalkData, TagFileStartTimeIsTheRecordingStart) {
   const double pos_start = gps_from_calendar({2025, 8, 28, 17, 30, 39.749}).total_seconds();
   EXPECT_NEAR(tag.start_gps_s - pos_start, 1.2, 0.2);
   EXPECT_GT(tag.entries.size(), 9000u);
+}
+
+// RTKLIB writes each (tick, position) pair after the chunk (stream.c, writefile): the position is where the chunk
+// ends. The real file says so at both ends: its first pair is at byte 835, not 0 (the first chunk's 835 bytes), and
+// its last at the file's end (1,001,983 bytes counted with CRLF): read as chunk starts, the first 835 bytes would
+// have no tag and the last chunk no bytes.
+TEST(WalkData, TagPositionsAreWhereTheirChunksEnd) {
+  const RtklibTimeTag tag = read_rtklib_time_tag(kWalk + "imu_1730.csv.tag");
+  ASSERT_GE(tag.entries.size(), 3u);
+  EXPECT_EQ(tag.entries.front().file_pos, 835u);
+  EXPECT_EQ(tag.entries.back().file_pos, 981527u + 20456u);
+  const double t0_s = tag.start_gps_s;  // 1.4e9 s: differences hold to 2.4e-7 s
+  EXPECT_NEAR(tag.reception_gps_s(0) - t0_s, tag.entries[0].tick_ms * 1e-3, 1e-6);
+  EXPECT_NEAR(tag.reception_gps_s(834) - t0_s, tag.entries[0].tick_ms * 1e-3, 1e-6);
+  // byte 835 is in the next chunk that ends beyond it
+  const auto next = std::find_if(tag.entries.begin(), tag.entries.end(), [](const auto& e) { return e.file_pos > 835; });
+  ASSERT_NE(next, tag.entries.end());
+  EXPECT_NEAR(tag.reception_gps_s(835) - t0_s, next->tick_ms * 1e-3, 1e-6);
 }
 
 TEST(WalkData, ImuSamplesGetMonotonicGpsTimeOnTheDeviceCounter) {
