@@ -79,8 +79,10 @@ double NavFilter::gate_threshold(int dof) const {
 
 void NavFilter::restart() {
   FilterObserver* observer = observer_.p;
+  const FaultCounters faults = faults_;  // a run's summary counts its faults over every re-alignment
   *this = NavFilter(opt_);
   observer_.p = observer;
+  faults_ = faults;
 }
 
 void NavFilter::initialize(const NavState& s, const NavStd& std) {

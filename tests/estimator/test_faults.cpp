@@ -53,6 +53,27 @@ TEST(Faults, NonFiniteImuAndGnssAreSkippedFlaggedAndCounted) {
   EXPECT_TRUE(f.state().v_n_mps.allFinite());
 }
 
+// A session that aligns again restarts its filter: what the run met before still counts in its summary.
+TEST(Faults, TheFaultCountsOfARunSurviveARestartOfItsFilter) {
+  NavFilter f(FilterOptions{});
+  f.initialize(start(), NavStd{});
+  ImuIncrement bad = static_increment(100.005, 0.005);
+  bad.dvel_b_mps.z() = std::nan("");
+  f.add_imu(bad);
+  GnssFix fix;
+  fix.t_s = 100.1;
+  fix.pos = start().pos;
+  fix.pos.h_m = std::nan("");
+  f.add_gnss(fix);
+  ASSERT_EQ(f.faults().imu_rejected, 1);
+  ASSERT_EQ(f.faults().measurements_rejected, 1);
+  f.restart();
+  f.initialize(start(), NavStd{});
+  f.add_imu(bad);
+  EXPECT_EQ(f.faults().imu_rejected, 2);
+  EXPECT_EQ(f.faults().measurements_rejected, 1);
+}
+
 TEST(Faults, NonPositiveDefiniteCovarianceIsResetAndFlagged) {
   NavFilter f(FilterOptions{});
   f.initialize(start(), NavStd{});
