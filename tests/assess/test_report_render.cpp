@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "sim_drive.hpp"
+#include "toolbox/assess/html_page.hpp"
 
 using namespace ldv;
 namespace fs = std::filesystem;
@@ -117,6 +118,20 @@ TEST(ReportRender, PageWithEveryPlotOpensInChromium) {
   EXPECT_GT(fs::file_size(dir / "screenshot.png"), 50000u);  // a blank page is a few kB
   std::printf("report: %s, screenshot: %s\n", (out / "index.html").c_str(), (dir / "screenshot.png").c_str());
   if (!HasFailure()) fs::remove_all(dir);  // kept for a look when it failed
+}
+
+// A page that the disk cannot take (/dev/full: every write fails at the flush) is an error naming the file, never
+// a report said to be written.
+TEST(ReportRender, APageTheDiskCannotTakeIsAnErrorNamingTheFile) {
+  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  assess::HtmlPage page("full disk");
+  page.paragraph(std::string(1 << 16, 'x'));
+  try {
+    page.write("/dev/full");
+    ADD_FAILURE() << "a page written to a full disk was reported written";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("/dev/full"), std::string::npos) << e.what();
+  }
 }
 
 // A smoothed run (`ldv smooth`, GNSS cut for 60 s in turns): the page has the smoothing section, its two plots,

@@ -3,6 +3,8 @@
 // excess error; with none, nothing is added. (The many-seed version: test_diagnose_montecarlo.)
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "tests/diagnose/trial.hpp"
 #include "toolbox/diagnose/report_json.hpp"
 
@@ -68,6 +70,14 @@ TEST(DiagnoseSim, LeverArmEstimateAndJsonContract) {
                           "\"statistic\": ", "\"p_value\": ", "\"estimate\": [", "\"sigma\": [", "\"group\": [",
                           "\"verdict\": {\"add\": [\"lever_arm\"]"})
     EXPECT_NE(json.find(key), std::string::npos) << key;
+  if (std::filesystem::exists("/dev/full")) {  // a full disk: an error naming the file, not a report said written
+    try {
+      write_json(d, "/dev/full");
+      ADD_FAILURE() << "a JSON report written to a full disk was reported written";
+    } catch (const std::exception& e) {
+      EXPECT_NE(std::string(e.what()).find("/dev/full"), std::string::npos) << e.what();
+    }
+  }
 }
 
 // Standing still, nothing excites a scale factor or a time offset: they are reported untestable, not

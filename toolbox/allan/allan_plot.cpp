@@ -1,10 +1,11 @@
 #include "toolbox/allan/allan_plot.hpp"
 
-#include "common/plot/gnuplot.hpp"
-
 #include <cmath>
 #include <fstream>
 #include <stdexcept>
+
+#include "common/io/output_file.hpp"
+#include "common/plot/gnuplot.hpp"
 
 namespace ldv::allan {
 namespace {
@@ -47,7 +48,7 @@ void plot_allan(const std::string& png, const std::vector<ChannelResult>& result
     }
     d << "\n\n";
   }
-  d.close();
+  close_checked(d, dat);
   const size_t n = results.size();
   const int cols = n <= 1 ? 1 : (n <= 4 ? 2 : 3);
   const int rows = static_cast<int>((n + cols - 1) / cols);
@@ -78,7 +79,7 @@ void plot_allan(const std::string& png, const std::vector<ChannelResult>& result
     g << "\n";
   }
   if (n > 1) g << "unset multiplot\n";
-  g.close();
+  close_checked(g, gp);
   if (plot::run_gnuplot(gp, ".") != 0) throw std::runtime_error("gnuplot failed on " + gp);
 }
 

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "common/io/output_file.hpp"
 #include "common/plot/gnuplot.hpp"
 
 namespace ldv::assess {
@@ -34,6 +35,7 @@ std::string GnuplotFigure::render() {
     s << "set terminal pngcairo size " << width_px_ << "," << height_px_ << " font 'DejaVu Sans,10'\n"
       << "set output " << plot::gnuplot_literal(png) << "\nset grid lc rgb '#dddddd'\nset key outside right top\nset border lw 0.8\n"
       << script_;
+    close_checked(s, (fs::path(dir_) / gp).string());
   }
   const int rc = plot::run_gnuplot(gp, dir_, stem_ + ".log");
   std::error_code ec;

@@ -5,6 +5,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "common/io/output_file.hpp"
+
 namespace ldv::assess {
 
 std::string html_escape(const std::string& s) {
@@ -75,6 +77,7 @@ void HtmlPage::write(const std::string& path) const {
   std::ofstream f(path);
   if (!f) throw std::runtime_error("cannot write " + path);
   f << str();
+  close_checked(f, path);
 }
 
 }  // namespace ldv::assess

@@ -244,6 +244,7 @@ std::vector<std::string> write_sweep_plots(const std::string& prefix, const Stat
       dat << "# EV  max_cov_eigenvalue  rms_residual[" << a->residual_unit << " SI]  sigma0  mse\n";
       for (const DampingPoint& p : a->sweep.points)
         dat << p.ev << " " << p.max_cov_eigenvalue << " " << p.rms_misclosure << " " << p.sigma0 << " " << p.mse << "\n";
+      close_checked(dat, base + ".dat");
     }
     {
       std::ofstream gp(base + ".gp");
@@ -255,6 +256,7 @@ std::vector<std::string> write_sweep_plots(const std::string& prefix, const Stat
          << "set arrow from " << a->ev << ", graph 0 to " << a->ev << ", graph 1 nohead dt 2\n"
          << "plot " << plot::gnuplot_literal(base + ".dat") << " u 1:2 w lp t 'max covariance eigenvalue' axes x1y1, "
          << "'' u 1:3 w lp t 'rms residual' axes x1y2\n";
+      close_checked(gp, base + ".gp");
     }
     if (plot::run_gnuplot(base + ".gp", ".") == 0)
       made.push_back(base + ".png");

@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "common/io/input_error.hpp"
+#include "common/io/output_file.hpp"
 #include "common/plot/gnuplot.hpp"
 
 namespace ldv::diag {
@@ -39,6 +40,7 @@ void write_innovations(const fs::path& p, const FilterRun& run, const std::vecto
       << r.nis << " " << e.v_n_mps.head<2>().norm() << " " << e.rpy_rad.z() * kRadToDeg << " "
       << yaw_rate_rad_s(e) * kRadToDeg << " " << e.f_b_mps2.head<2>().norm() << "\n";
   }
+  close_checked(f, p.string());
 }
 
 std::string segment_shading(const std::string& dat, double t0) {
@@ -82,7 +84,7 @@ int write_plots(const Diagnosis& d, const std::string& dir_name) {
          << ") with lines lc rgb 'red' notitle\n";
     }
     gp << "unset multiplot\n";
-    gp.close();
+    close_checked(gp, (dir / "innovations.gp").string());
     written += run_gnuplot(dir, "innovations.gp");
   }
   {  // 2. residual against speed / heading / yaw rate / specific force
@@ -96,7 +98,7 @@ int write_plots(const Diagnosis& d, const std::string& dir_name) {
          << ":(sqrt($3**2+$4**2)) with points pt 7 ps 0.3 title 'before', 'innov_pos_after.dat' using " << x[0]
          << ":(sqrt($3**2+$4**2)) with points pt 7 ps 0.3 title 'after'\n";
     gp << "unset multiplot\n";
-    gp.close();
+    close_checked(gp, (dir / "residual_vs_motion.gp").string());
     written += run_gnuplot(dir, "residual_vs_motion.gp");
   }
   {  // 3. candidate scores against the threshold
@@ -106,14 +108,14 @@ int write_plots(const Diagnosis& d, const std::string& dir_name) {
     int i = 0;
     for (const CandidateScore& c : s.ranked)
       f << i++ << " " << c.name << " " << (c.testable ? std::max(c.statistic, 1e-3) : 1e-3) << " " << c.p_value << "\n";
-    f.close();
+    close_checked(f, (dir / "scores.dat").string());
     std::ofstream gp = open(dir / "scores.gp");
     gp << term << "set output 'scores.png'\nset title 'Screening: robust score statistic per candidate (first pass), "
        << "* = significant (p < " << s.threshold_p << ")'\nset logscale y\nset style fill solid 0.6\nset boxwidth 0.7\n"
        << "set xtics rotate by -30\nset ylabel 'statistic g^T V^-1 g'\nset grid ytics\n"
        << "plot 'scores.dat' using 1:3:xtic(2) with boxes lc rgb '#4488ee' notitle, '' using 1:($4<" << s.threshold_p
        << "?$3*1.3:NaN):(\"*\") with labels notitle\n";
-    gp.close();
+    close_checked(gp, (dir / "scores.gp").string());
     written += run_gnuplot(dir, "scores.gp");
   }
   {  // 4. before / after: NIS, and the error against truth when known
@@ -124,6 +126,7 @@ int write_plots(const Diagnosis& d, const std::string& dir_name) {
       for (size_t i = 0; i < b.t_s.size() && i < a.t_s.size(); ++i)
         f << b.t_s[i] - t0 << " " << b.pos_err_ned_m[i].head<2>().norm() << " " << std::abs(b.pos_err_ned_m[i].z()) << " "
           << a.pos_err_ned_m[i].head<2>().norm() << " " << std::abs(a.pos_err_ned_m[i].z()) << "\n";
+      close_checked(f, (dir / "truth_error.dat").string());
     }
     std::ofstream gp = open(dir / "before_after.gp");
     gp << term << "set output 'before_after.png'\nset multiplot layout " << (d.truth_before.available ? 2 : 1)
@@ -135,7 +138,7 @@ int write_plots(const Diagnosis& d, const std::string& dir_name) {
          << "lc rgb '#dd3333' title 'horizontal before', '' using 1:4 with lines lc rgb '#228822' title 'horizontal after', "
          << "'' using 1:3 with lines dt 2 lc rgb '#dd3333' title 'vertical before', '' using 1:5 with lines dt 2 lc rgb '#228822' title 'vertical after'\n";
     gp << "unset multiplot\n";
-    gp.close();
+    close_checked(gp, (dir / "before_after.gp").string());
     written += run_gnuplot(dir, "before_after.gp");
   }
   return written;

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "common/io/input_error.hpp"
+#include "common/io/output_file.hpp"
 
 namespace ldv::diag {
 namespace {
@@ -185,6 +186,7 @@ void write_json(const Diagnosis& d, const std::string& path) {
   std::ofstream f(path);
   if (!f) throw InputError(path, 0, "cannot open for writing");
   f << diagnosis_json(d);
+  close_checked(f, path);  // a full disk shows at the flush
 }
 
 }  // namespace ldv::diag
