@@ -69,6 +69,10 @@ int main(int argc, char** argv) {
 
     spdlog::info("gnss_link: {} ({}) -> {} / {} on '{}'", source->describe(), link_protocol_name(o.decoder.protocol),
                  o.solution_channel, o.pps_channel, o.bus_url);
+    // The device is opened before READY: the first heartbeat says whether it is (it said "input up" before the
+    // open, and a writer that trusted it lost its first bytes to the open's flush).
+    source->maintain(now_s);
+    if (source->fd() < 0 && !source->finished()) rt.counters().fault_bits = kFaultInputDown;
     rt.ready();
     // Small reads when pacing a file keep the replay close to real time; otherwise take what is there.
     std::vector<uint8_t> buffer(o.input.type == "file" && o.input.file_speed_factor > 0 ? 512 : 16384);

@@ -168,6 +168,10 @@ int main(int argc, char** argv) {
                  o.protocol == DeviceProtocol::kGx2 ? "3DM-GX2" : "time-stamp unit",
                  kernel_pps ? o.kernel_pps_device : (o.pps_source == PpsSource::kDevice ? "device latches" : "nowhere"),
                  o.imu_channel, o.pps_channel, o.timing_channel, o.bus_url);
+    // The device is opened before READY: the first heartbeat says whether it is (it said "input up" before the
+    // open, and a writer that trusted it lost its first bytes to the open's flush).
+    source->maintain(now_s);
+    if (source->fd() < 0 && !source->finished()) rt.counters().fault_bits = kFaultInputDown;
     rt.ready();
     std::vector<uint8_t> buffer(8192);
     double next_report_s = now_s + 1.0;

@@ -40,7 +40,7 @@ ServiceRuntime::ServiceRuntime(std::string name, const std::string& bus_url)
 }
 
 void ServiceRuntime::ready() {
-  state_ = 1;
+  state_ = counters_.fault_bits ? 2 : 1;
   sd_notify(0, "READY=1");
   spdlog::info("{}: ready", name_);
   next_heartbeat_s_ = 0.0;

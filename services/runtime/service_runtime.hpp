@@ -29,7 +29,8 @@ class ServiceRuntime {
   ServiceCounters& counters() { return counters_; }
   const std::string& name() const { return name_; }
 
-  // Tells systemd the service is ready (Type=notify) and starts the heartbeat.
+  // Tells systemd the service is ready (Type=notify) and starts the heartbeat: running, or degraded when the
+  // fault bits set before it say so (a device that could not be opened).
   void ready();
   // Sends the heartbeat and the watchdog ping when due; call at least every 100 ms.
   void tick();
