@@ -301,9 +301,6 @@ TEST(Faults, AStateThatLeavesTheFixStreamIsResynchronisedAndConverges) {
 namespace ldv::est {
 namespace {
 
-// The configuration ldv sim writes for a grade carries geoldv51's moving bias per term (B with its time
-// constant, K, R), and options_from_kfgins reads them: the Gauss-Markov is B alone (imunoise's gbstd merges K
-// into it), K drives the random walk, R is the ramp rate's prior. A malformed value names its key and line.
 // An IMU stream that stops for 2 s (its acquisition service restarted) while the fixes keep coming, on a vehicle
 // driving north at 10 m/s: the fixes that arrived during the hole hold the vehicle's position at their own epochs.
 // Applied at the end of the hole instead, the oldest are 2 s (20 m) behind the vehicle: the vehicle-system fault
@@ -367,6 +364,9 @@ TEST(Faults, FixesThatArriveDuringAnImuHoleAreAppliedAtTheirOwnEpochs) {
   EXPECT_LT(worst_smoothed_m, 0.1);
 }
 
+// The configuration ldv sim writes for a grade carries geoldv51's moving bias per term (B with its time
+// constant, K, R), and options_from_kfgins reads them: the Gauss-Markov is B alone (imunoise's gbstd merges K
+// into it), K drives the random walk, R is the ramp rate's prior. A malformed value names its key and line.
 TEST(Faults, TheGradesMovingBiasTermsReachGeoLdv51) {
   sim::SimRequest req;
   req.grade = "hg1900-paper";  // accel: Q + B (T 17, 28, 33 s) + K + R (no R on y)
