@@ -209,9 +209,7 @@ void NavFilter::process_imu(const ImuIncrement& raw) {
     while (!pending_.empty() && pending_.front().t_s() - c_.model.time_offset_s < coast_to_s - kSplitTolerance_s) {
       const double t_m = pending_.front().t_s() - c_.model.time_offset_s;
       if (t_m > c_.nav.t_s + kSplitTolerance_s) coast_over_imu_gap(t0, t_m);
-      const Event event = pending_.front();
-      pending_.pop_front();
-      apply_event(event);
+      apply_next_pending();
     }
     if (coast_to_s > c_.nav.t_s) coast_over_imu_gap(t0, coast_to_s);
   } else {
@@ -245,10 +243,7 @@ void NavFilter::process_imu(const ImuIncrement& raw) {
       propagate_sample(rem);
       rem.dt_s = 0.0;
     }
-    flush_covariance();
-    const Event event = pending_.front();
-    pending_.pop_front();
-    apply_event(event);
+    apply_next_pending();
   }
   if (rem.dt_s > 0.0) propagate_sample(rem);
 
@@ -495,6 +490,13 @@ void NavFilter::rewind_and_apply(const Event& event) {
       take_snapshot();
     }
   replaying_ = false;
+}
+
+void NavFilter::apply_next_pending() {
+  flush_covariance();
+  const Event event = pending_.front();
+  pending_.pop_front();
+  apply_event(event);
 }
 
 void NavFilter::apply_event(const Event& e) {

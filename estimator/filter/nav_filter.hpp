@@ -151,6 +151,8 @@ class NavFilter {
   void flush_covariance();
   void run_aids();
   void apply_event(const Event& event);
+  // Brings P to the state's epoch and applies the first queued reading there.
+  void apply_next_pending();
   void enqueue(const Event& event);
   void apply_measurement(const Measurement& m);
   RejectRun& reject_run(SensorName sensor);
