@@ -72,7 +72,7 @@ int main(int argc, char** argv) {
     // The device is opened before READY: the first heartbeat says whether it is (it said "input up" before the
     // open, and a writer that trusted it lost its first bytes to the open's flush).
     source->maintain(now_s);
-    if (source->fd() < 0 && !source->finished()) rt.counters().fault_bits = kFaultInputDown;
+    if (source->down()) rt.counters().fault_bits = kFaultInputDown;
     rt.ready();
     // Small reads when pacing a file keep the replay close to real time; otherwise take what is there.
     std::vector<uint8_t> buffer(o.input.type == "file" && o.input.file_speed_factor > 0 ? 512 : 16384);
@@ -110,7 +110,7 @@ int main(int argc, char** argv) {
       if (c.rejected_total() > last_rejected) last_bad_input_s = now_s;
       last_rejected = c.rejected_total();
       int32_t faults = 0;
-      if (source->fd() < 0 && !source->finished()) faults |= kFaultInputDown;
+      if (source->down()) faults |= kFaultInputDown;
       if (now_s - last_jump_s < kFaultHold_s) faults |= kFaultJumpRejected;
       if (last_solution_s > 0 && now_s - last_solution_s > o.stale_after_s && !source->finished()) faults |= kFaultStale;
       if (now_s - last_bad_input_s < kFaultHold_s) faults |= kFaultBadInput;

@@ -171,7 +171,7 @@ int main(int argc, char** argv) {
     // The device is opened before READY: the first heartbeat says whether it is (it said "input up" before the
     // open, and a writer that trusted it lost its first bytes to the open's flush).
     source->maintain(now_s);
-    if (source->fd() < 0 && !source->finished()) rt.counters().fault_bits = kFaultInputDown;
+    if (source->down()) rt.counters().fault_bits = kFaultInputDown;
     rt.ready();
     std::vector<uint8_t> buffer(8192);
     double next_report_s = now_s + 1.0;
@@ -204,7 +204,7 @@ int main(int argc, char** argv) {
       counters.malformed = static_cast<int64_t>(dc.bad_checksum);
       counters.dropped = static_cast<int64_t>(dc.lost_samples + label_seq.lost());
       int32_t faults = 0;
-      if (source->fd() < 0 && !source->finished()) faults |= kFaultInputDown;
+      if (source->down()) faults |= kFaultInputDown;
       if (!stamper.fit().locked()) faults |= kFaultUnlocked;
       if (o.pps_source != PpsSource::kNone && now_s - last_label_s > 3.0) faults |= kFaultNoLabels;
       if (now_s - last_bad_frame_s < 10.0) faults |= kFaultBadFrames;

@@ -30,6 +30,8 @@ class ByteSource {
   virtual std::size_t read_some(std::span<std::uint8_t> buffer, double now_s) = 0;
   // True once a file has been read to its end (streams never finish).
   virtual bool finished() const { return false; }
+  // Closed and still expected to deliver: the services' "input down" fault.
+  bool down() const { return fd() < 0 && !finished(); }
   // "serial /dev/ttyUSB0 @ 115200", "tcp 127.0.0.1:52001", "file walk.ubx".
   virtual std::string describe() const = 0;
 
