@@ -195,7 +195,7 @@ TaggedFiles tagged(const std::string& name, const std::vector<std::string>& coun
     csv += body + (file_crlf ? "\r\n" : "\n");
     counted += body.size() + (tag_crlf ? 2 : 1);
     put_u32(tag, static_cast<uint32_t>(10 * i + 3));   // tick of reception [ms]: 3 ms latency
-    put_u32(tag, static_cast<uint32_t>(counted));  // as RTKLIB writes it: the position after the chunk
+    put_u32(tag, static_cast<uint32_t>(counted));      // as RTKLIB writes it: the position after the chunk
   }
   return {write_temp(name + ".csv", csv), write_temp(name + ".csv.tag", tag)};
 }

@@ -35,7 +35,8 @@ TEST(WalkData, TagPositionsAreWhereTheirChunksEnd) {
   EXPECT_NEAR(tag.reception_gps_s(0) - t0_s, tag.entries[0].tick_ms * 1e-3, 1e-6);
   EXPECT_NEAR(tag.reception_gps_s(834) - t0_s, tag.entries[0].tick_ms * 1e-3, 1e-6);
   // byte 835 is in the next chunk that ends beyond it
-  const auto next = std::find_if(tag.entries.begin(), tag.entries.end(), [](const auto& e) { return e.file_pos > 835; });
+  const auto next =
+      std::find_if(tag.entries.begin(), tag.entries.end(), [](const auto& e) { return e.file_pos > 835; });
   ASSERT_NE(next, tag.entries.end());
   EXPECT_NEAR(tag.reception_gps_s(835) - t0_s, next->tick_ms * 1e-3, 1e-6);
 }

@@ -115,7 +115,8 @@ TEST(GnssLinkIntegration, GivenTheRealUbxWalkThroughAPty_ThenEverySolutionPublis
   Listener l;
   // Write only once the port is open: bytes buffered before the open are stale to gnss_link and dropped. Any
   // heartbeat with fault bit 0 clear says so (the port is opened before READY and the first heartbeat).
-  ASSERT_TRUE(l.spin_until([&] { return l.status.has_value() && (l.status->fault_bits & 1) == 0; }, 30.0)) << "no heartbeat";
+  ASSERT_TRUE(l.spin_until([&] { return l.status.has_value() && (l.status->fault_bits & 1) == 0; }, 30.0))
+      << "no heartbeat";
 
   // Given the bytes arrive in serial-sized chunks (the pty blocks when the service falls behind)
   std::thread writer([&] {
@@ -281,7 +282,8 @@ TEST(GnssLinkIntegration, GivenGarbageTruncationBadChecksumsAndAJump_ThenCounted
 // A receiver that is not plugged in: gnss_link runs (it opens the port when it appears), and its very first
 // heartbeat says the input is down (it used to say "running, no fault" until the loop's first turn).
 TEST(GnssLinkIntegration, GivenADeviceThatCannotBeOpened_ThenItsFirstHeartbeatSaysTheInputIsDown) {
-  const auto cfg = write_config("gnss_unplugged", "  type: serial\n  serial: {device: /dev/ldv-no-such-tty, baud: 115200}\n", "ubx");
+  const auto cfg =
+      write_config("gnss_unplugged", "  type: serial\n  serial: {device: /dev/ldv-no-such-tty, baud: 115200}\n", "ubx");
   Listener l;
   test::ChildProcess svc(kBin, {"--config", cfg});
   ASSERT_TRUE(l.spin_until([&] { return l.status.has_value(); }, 30.0)) << "no heartbeat";

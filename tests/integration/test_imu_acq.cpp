@@ -119,7 +119,8 @@ TEST(ImuAcqIntegration, GivenTheTimeStampUnitThroughAPtyWith50ppmAndPpsLabels_Th
   // Until the port is open (fault bit 0 clear): bytes buffered before the open are stale and dropped.
   // Any heartbeat with fault bit 0 clear proves the port open (it is opened, and its stale input flushed,
   // before READY and the first heartbeat): writing earlier would lose the first bytes to that flush.
-  ASSERT_TRUE(l.spin_until([&] { return l.status.has_value() && (l.status->fault_bits & 1) == 0; }, 30.0)) << "no heartbeat";
+  ASSERT_TRUE(l.spin_until([&] { return l.status.has_value() && (l.status->fault_bits & 1) == 0; }, 30.0))
+      << "no heartbeat";
 
   // When 12 s of device bytes arrive in real time
   DeviceSim sim(pty);
