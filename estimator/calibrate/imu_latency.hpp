@@ -46,10 +46,13 @@ struct ImuLatencyEstimate {
   double lever_arm_equivalent_lag_s() const {
     return median_speed_mps > 0 ? kMaxLeverArmAlong_m / median_speed_mps : 1e9;
   }
-  // Worth correcting the data for: beyond 3 sigma, beyond the lever-arm equivalent, at least 5 ms, and
-  // known to better than 20 ms.
+  // Worth correcting the data for without asking the filter: beyond 3 sigma, beyond the lever-arm equivalent, at
+  // least 5 ms, and known to better than kMaxSigma_s. (`ldv nav` lets the filter decide on a lag beyond 3 sigma
+  // that fails the other two: toolbox/assess/nav_inputs.cpp.)
+  static constexpr double kMaxSigma_s = 0.02;
   bool significant() const {
-    return valid && std::abs(lag_s) > std::max({3.0 * sigma_s, 0.005, lever_arm_equivalent_lag_s()}) && sigma_s < 0.02;
+    return valid && std::abs(lag_s) > std::max({3.0 * sigma_s, 0.005, lever_arm_equivalent_lag_s()}) &&
+           sigma_s < kMaxSigma_s;
   }
 };
 

@@ -112,9 +112,11 @@ InstalledImuNoise measure_installed_imu_noise(const std::vector<ImuIncrement>& i
                                               double min_standstill_s, double max_speed_mps) {
   InstalledImuNoise out;
   if (imu.size() < 100 || gnss.size() < 3) return out;
-  // The longest run of fixes that each stay within max_speed_mps of where the track is kStillWindow_s later.
-  // The window, not the chord to the next fix: at 4 Hz, RTK's centimetre noise alone makes a 0.1 m/s chord.
-  constexpr double kStillWindow_s = 1.0, kMaxWindow_s = 3.0;
+  // The longest run of fixes that each stay within max_speed_mps of where the track is kStillWindow_s later,
+  // horizontally, beyond the fixes' own noise (kNoiseSigmas of the chord's stated std). The window, not the chord
+  // to the next fix: at 4 Hz, RTK's centimetre noise alone makes a 0.1 m/s chord; at 1 Hz the 1 s chord of a
+  // 2 cm RTK moves at 3 cm/s, and over 5 cm/s in one window in five.
+  constexpr double kStillWindow_s = 1.0, kMaxWindow_s = 3.0, kNoiseSigmas = 4.0;
   double best_t0 = 0, best_t1 = 0, run_t0 = gnss.front().t_s;
   bool in_run = false;
   size_t later = 0;
@@ -123,8 +125,10 @@ InstalledImuNoise measure_installed_imu_noise(const std::vector<ImuIncrement>& i
     while (later < gnss.size() && gnss[later].t_s - gnss[k].t_s < kStillWindow_s) ++later;
     if (later == gnss.size()) break;
     const double dt = gnss[later].t_s - gnss[k].t_s;
-    const bool still =
-        dt <= kMaxWindow_s && earth::ned_between(gnss[k].pos, gnss[later].pos).norm() / dt < max_speed_mps;
+    const double chord_std_m = std::hypot(gnss[k].pos_std_ned_m.head<2>().maxCoeff(),
+                                          gnss[later].pos_std_ned_m.head<2>().maxCoeff());
+    const double moved_m = earth::ned_between(gnss[k].pos, gnss[later].pos).head<2>().norm();
+    const bool still = dt <= kMaxWindow_s && moved_m < max_speed_mps * dt + kNoiseSigmas * chord_std_m;
     if (still && !in_run) run_t0 = gnss[k].t_s;
     in_run = still;
     if (still && gnss[later].t_s - run_t0 > best_t1 - best_t0) best_t0 = run_t0, best_t1 = gnss[later].t_s;

@@ -22,7 +22,8 @@ struct InstalledImuNoise {
   ImuNoiseScale psd_scale(const Vec3& arw_configured, const Vec3& vrw_configured) const;
 };
 
-// imu and gnss in time order on one time base; the standstill: GNSS speed below max_speed_mps, over 1 s.
+// imu and gnss in time order on one time base; the standstill: GNSS horizontal speed below max_speed_mps over
+// 1 s, beyond the noise of the fixes' stated std.
 InstalledImuNoise measure_installed_imu_noise(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
                                               double min_standstill_s = 5.0, double max_speed_mps = 0.05);
 

@@ -39,9 +39,13 @@ struct AlignmentOptions {
   double cog_yaw_std_rad = 3.0 * kDegToRad;
   // Mounting unknown (hand-held): the course gives the heading of the motion, not of the body x axis.
   // With N > 1, run_navigation tries N body headings 360/N deg apart for course_trial_s of aided
-  // navigation and keeps the one whose GNSS position innovations are smallest (sum of NIS).
+  // navigation and keeps the one whose GNSS position innovations are smallest (sum of NIS, each fix's capped
+  // at the gate).
   int course_hypotheses = 1;
   double course_trial_s = 8.0;
+  // A window whose accelerations do not tell the headings apart (a straight at constant speed) is doubled up to
+  // this (NavSession::run_heading_trial).
+  double course_trial_max_s = 64.0;
   Vec3 lever_arm_b_m = Vec3::Zero();
   // The GNSS has a say (off in KF-GINS-compatible runs, FilterOptions::robust_update):
   //  - standstill: an IMU vibrating in a car at rest (engine, 10x its datasheet noise) never looks static to

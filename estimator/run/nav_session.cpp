@@ -6,6 +6,7 @@
 #include <type_traits>
 
 #include "common/geo/earth_model.hpp"
+#include "estimator/calibrate/installed_imu_noise.hpp"
 #include "estimator/update/sensor_names.hpp"
 
 namespace ldv::est {
@@ -248,7 +249,7 @@ void NavSession::drain_alignment_queue(double now_s, bool at_end) {
   while (!navigating()) {
     if (trial_) {
       if (!heading_trial_ready(now_s, at_end)) return;
-      run_heading_trial();
+      run_heading_trial(at_end);
       break;
     }
     if (imu_queue_.empty()) break;
@@ -261,7 +262,9 @@ void NavSession::drain_alignment_queue(double now_s, bool at_end) {
     const bool slow_running = slow_aligner_ && !slow_result_;
     aligner_.add_imu(head.imu);
     if (slow_running) slow_aligner_->add_imu(head.imu);
+    keep_pre_start(head.imu);
     for (; !gnss_queue_.empty() && gnss_queue_.front().t_s <= head.imu.t_s; gnss_queue_.pop_front()) {
+      if (wants_pre_start_noise()) pre_start_gnss_.push_back(gnss_queue_.front());
       aligner_.add_gnss(gnss_queue_.front());
       if (slow_running) slow_aligner_->add_gnss(gnss_queue_.front());
       if (slow_result_) slow_replay_gnss_.push_back(gnss_queue_.front());
@@ -284,7 +287,7 @@ void NavSession::drain_alignment_queue(double now_s, bool at_end) {
     if (slow_result_ && head.imu.t_s - slow_result_->state.t_s > o_.slow_course_grace_s) take_slow_course_alignment();
   }
   if (at_end && !navigating() && slow_result_) take_slow_course_alignment();
-  if (at_end && !navigating() && trial_) run_heading_trial();
+  if (at_end && !navigating() && trial_) run_heading_trial(true);
   if (navigating()) release_backlog();
 }
 
@@ -300,7 +303,39 @@ void NavSession::take_slow_course_alignment() {
   aligned(std::move(al));
 }
 
+bool NavSession::wants_pre_start_noise() const {
+  return !o_.imu_noise_floor && !noise_measured_ && filter_.options().adapt_imu_noise &&
+         filter_.options().installed_noise_floor;
+}
+
+void NavSession::keep_pre_start(const ImuIncrement& imu) {
+  if (!wants_pre_start_noise()) return;
+  pre_start_imu_.push_back(imu);
+  while (pre_start_imu_.front().t_s < imu.t_s - kPreStartKept_s) pre_start_imu_.pop_front();
+  const auto old = std::find_if(pre_start_gnss_.begin(), pre_start_gnss_.end(),
+                                [&](const GnssFix& f) { return f.t_s >= pre_start_imu_.front().t_s; });
+  pre_start_gnss_.erase(pre_start_gnss_.begin(), old);
+}
+
+void NavSession::measure_noise_before_start() {
+  if (!wants_pre_start_noise()) return;
+  noise_measured_ = true;
+  const std::vector<ImuIncrement> imu(pre_start_imu_.begin(), pre_start_imu_.end());
+  pre_start_imu_.clear();
+  const InstalledImuNoise noise = measure_installed_imu_noise(imu, pre_start_gnss_);
+  pre_start_gnss_.clear();
+  if (!noise.found) return;
+  const bool filled = filter_.fill_unset_white_noise(noise.arw_rad_per_sqrt_s, noise.vrw_mps_per_sqrt_s);
+  o_.imu_noise_floor = noise.psd_scale(filter_.options().arw_rad_per_sqrt_s, filter_.options().vrw_mps_per_sqrt_s);
+  char b[200];
+  std::snprintf(b, sizeof b, "; IMU noise as installed over the %.0f s standstill before the start: gyro %.3gx, accel %.3gx the configured PSD%s",
+                noise.standstill_s, o_.imu_noise_floor->gyro, o_.imu_noise_floor->accel,
+                filled ? " (a white noise configured as 0 took the standstill's)" : "");
+  noise_note_ = b;
+}
+
 void NavSession::aligned(Alignment al) {
+  measure_noise_before_start();
   const Vec3& seed = al.gyro_bias_seed;
   if (!seed.isZero()) {
     char buf[160];
@@ -310,6 +345,7 @@ void NavSession::aligned(Alignment al) {
   }
   if (o_.alignment.course_hypotheses > 1 && al.method.find("course") != std::string::npos) {
     trial_ = std::move(al);  // unknown mounting: wait for course_trial_s of data to try the body headings on
+    trial_window_s_ = o_.alignment.course_trial_s;
     return;
   }
   start(al.state, al.std, al.method, al.gyro_bias_seed);
@@ -319,29 +355,33 @@ bool NavSession::heading_trial_ready(double now_s, bool at_end) const {
   if (at_end) return true;
   // Every IMU sample of the trial window is in once a later one came; every fix it uses (up to kLookahead_s
   // beyond its last sample) once a fix beyond that came, or the wait for GNSS is over.
-  const double t_window_end = std::min(o_.end_time_s, trial_->state.t_s + o_.alignment.course_trial_s);
+  const double t_window_end = std::min(o_.end_time_s, trial_->state.t_s + trial_window_s_);
   if (latest_imu_seen_t_s_ <= t_window_end) return false;
   return latest_gnss_t_s_ > t_window_end + kLookahead_s || now_s - latest_imu_arrival_s_ >= o_.align_wait_s;
 }
 
-void NavSession::run_heading_trial() {
+void NavSession::run_heading_trial(bool at_end) {
   Alignment al = std::move(*trial_);
   trial_.reset();
-  // Unknown mounting: which body heading matches the GNSS track over the next course_trial_s?
+  // Unknown mounting: which body heading matches the GNSS track over the trial window?
   const int n = o_.alignment.course_hypotheses;
   const double step = 2.0 * kPi / n;
-  const double t_window_end = std::min(o_.end_time_s, al.state.t_s + o_.alignment.course_trial_s);
-  double best_cost = 1e300, best_dyaw = 0.0;
+  const double t_window_end = std::min(o_.end_time_s, al.state.t_s + trial_window_s_);
+  double best_dyaw = 0.0;
   // First by the accelerations: the IMU's velocity changes (the aligned attitude carried by the gyros alone)
   // against the GNSS track's over the window give the heading error directly (heading_check.hpp); the
   // hypothesis nearest to it is taken. The innovations of a filter per hypothesis decide only when the window
-  // has too little acceleration for that.
-  const std::optional<double> misfit = window_heading_misfit(al, t_window_end);
+  // has too little acceleration for that. Only over the first course_trial_s: carried by a MEMS gyro alone for a
+  // minute (a turn-on bias known to 0.2 deg/s from a vibrating start), the attitude tilts by degrees, gravity
+  // leaks into the horizontal, and the accelerations of a later U-turn read the heading 50-140 deg off.
+  const double t_gyro_only_end = std::min(t_window_end, al.state.t_s + o_.alignment.course_trial_s);
+  const std::optional<double> misfit = window_heading_misfit(al, t_gyro_only_end);
   if (misfit) {
     const double k = std::remainder(-*misfit, 2.0 * kPi) / step;
     best_dyaw = std::remainder(std::lround(k) * step, 2.0 * kPi);
     if (best_dyaw < 0) best_dyaw += 2.0 * kPi;
   }
+  std::vector<double> cost_of(misfit ? 0 : n, 0.0);
   for (int k = 0; k < n && !misfit; ++k) {
     const double dyaw = k * step;
     // Without the in-flight noise adaptation (held at the installed noise): adapted, a wrong heading follows
@@ -358,24 +398,39 @@ void NavSession::run_heading_trial() {
     if (o_.imu_noise_floor) trial.set_imu_noise_floor(*o_.imu_noise_floor);
     auto fix = std::upper_bound(gnss_queue_.begin(), gnss_queue_.end(), s.t_s,
                                 [](double t, const GnssFix& g) { return t < g.t_s; });
-    double cost = 0.0;
     for (const QueuedImu& q : imu_queue_) {
       if (q.imu.t_s > t_window_end) break;
       for (; fix != gnss_queue_.end() && fix->t_s <= q.imu.t_s + kLookahead_s; ++fix) trial.add_gnss(*fix);
       trial.add_imu(q.imu);
+      // Each fix adds at most the gate: one GNSS outlier (a 1 m jump, NIS 1000s under the right heading) must
+      // not outweigh a wrong heading's steady misfit.
       for (const auto& r : trial.take_innovations())
-        if (r.sensor == sensors::kGnssPosition) cost += std::min(r.nis, 1e6);
+        if (r.sensor == sensors::kGnssPosition) cost_of[k] += std::min(r.nis, trial.gate_threshold(r.innovation.size()));
     }
-    if (cost < best_cost) {
-      best_cost = cost;
-      best_dyaw = dyaw;
+  }
+  if (!misfit) {
+    const int best = static_cast<int>(std::min_element(cost_of.begin(), cost_of.end()) - cost_of.begin());
+    best_dyaw = best * step;
+    // Decided when every heading beyond the best one's neighbours costs kTrialMargin more; a window without
+    // enough acceleration (a straight at constant speed) leaves them level and picks one at random. Then the
+    // window grows, up to course_trial_max_s: the start is the same epoch, so no output is lost, only delayed.
+    bool decided = true;
+    for (int k = 0; k < n; ++k) {
+      const int apart = std::min((k - best + n) % n, (best - k + n) % n);
+      if (apart > 1 && cost_of[k] - cost_of[best] < kTrialMargin) decided = false;
+    }
+    const bool more_data = !at_end && t_window_end < o_.end_time_s;
+    if (!decided && more_data && trial_window_s_ < o_.alignment.course_trial_max_s) {
+      trial_window_s_ = std::min(2.0 * trial_window_s_, o_.alignment.course_trial_max_s);
+      trial_ = std::move(al);
+      return;
     }
   }
   al.state.q_b_n = (Quat(Eigen::AngleAxisd(best_dyaw, Vec3::UnitZ())) * al.state.q_b_n).normalized();
   al.std.att_rad.z() = std::max(al.std.att_rad.z(), 0.5 * step);
   al.method += " (best of " + std::to_string(n) + " body headings" + (misfit ? " by the accelerations" : "") +
-               ": x axis " + std::to_string(static_cast<int>(std::lround(best_dyaw * kRadToDeg))) +
-               " deg from the course)";
+               " over " + fixed_text(trial_window_s_) + " s: x axis " +
+               std::to_string(static_cast<int>(std::lround(best_dyaw * kRadToDeg))) + " deg from the course)";
   start(al.state, al.std, al.method, al.gyro_bias_seed);
 }
 
@@ -435,7 +490,8 @@ void NavSession::start(const NavState& s, const NavStd& sd, const std::string& h
     gyro_bias_seed_rad_s_ = *gyro_bias_seed;
   }
   if (o_.imu_noise_floor && filter_.options().adapt_imu_noise) filter_.set_imu_noise_floor(*o_.imu_noise_floor);
-  initialisation_ = redo_note_.empty() ? given_note_ + how : redo_note_ + how;
+  initialisation_ = (redo_note_.empty() ? given_note_ + how : redo_note_ + how) + noise_note_;
+  noise_note_.clear();  // said once: a redo's note starts with this one
   started_at_s_ = s.t_s;
   imu_noise_floor_ = filter_.imu_noise_floor();
   // Readings up to the initial epoch are not used.

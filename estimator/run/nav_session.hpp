@@ -42,7 +42,10 @@ struct SessionOptions {
   // after the fallback aligned (offline, before this session: only when it was never reached in the file).
   double slow_course_grace_s = 60.0;
   // The IMU noise as installed, the floor of the filter's noise adaptation (FilterOptions::adapt_imu_noise):
-  // e.g. measured over a standstill (installed_imu_noise.hpp).
+  // e.g. measured over a standstill (installed_imu_noise.hpp); `ldv nav` measures it over the whole file's
+  // longest. Unset (a live service, which has no file), the session measures it over a standstill in the last
+  // kPreStartKept_s before the alignment (FilterOptions::installed_noise_floor), and a white-noise density
+  // configured as 0 takes that standstill's measurement (NavFilter::fill_unset_white_noise), as offline.
   std::optional<ImuNoiseScale> imu_noise_floor;
   // A failed alignment is redone (robust runs, FilterOptions::robust_update): when the horizontal velocity
   // changes the IMU senses, in the navigated attitude, are turned by more than this against the GNSS track's
@@ -63,8 +66,13 @@ class NavSession {
   using EpochSink = std::function<void(const NavFilter&, int gps_week)>;
   static constexpr double kLookahead_s = 0.5;  // readings are handed to the filter this far ahead of the IMU
   static constexpr double kSlowCourseSpeed_mps = 0.5;
+  // How much more (in truncated NIS over the trial window) every heading beyond the best one's neighbours must
+  // cost for the trial to be decided: a likelihood ratio of about e^4.5.
+  static constexpr double kTrialMargin = 9.0;
   // How far the first fix may be from a given position that still holds (an antenna lever arm not configured).
   static constexpr double kGivenStillThere_m = 3.0;
+  // How much data before the alignment is kept for the IMU noise as installed (SessionOptions::imu_noise_floor).
+  static constexpr double kPreStartKept_s = 120.0;
 
   // Drives `filter` (the caller keeps it: its observer, its results after the run).
   NavSession(SessionOptions options, NavFilter& filter, EpochSink on_epoch);
@@ -117,11 +125,16 @@ class NavSession {
   AlignmentOptions slow_course_options() const;
   void take_slow_course_alignment();
   bool heading_trial_ready(double now_s, bool at_end) const;
-  void run_heading_trial();
+  // Decides the body heading over the trial window, or (not at_end, the headings not told apart) grows the window.
+  void run_heading_trial(bool at_end);
   // The heading error of `al` from the accelerations up to t_window_end (HeadingCheck), when they show it.
   std::optional<double> window_heading_misfit(const Alignment& al, double t_window_end) const;
   bool try_warm_start(const ImuIncrement& imu);
   void aligned(Alignment al);
+  bool wants_pre_start_noise() const;
+  void keep_pre_start(const ImuIncrement& imu);
+  // The floor (and a white noise configured as 0) from a standstill before the alignment, once.
+  void measure_noise_before_start();
   void start(const NavState& s, const NavStd& sd, const std::string& how, const std::optional<Vec3>& gyro_bias_seed);
   void release_backlog();
   void navigate(const ImuIncrement& imu, int week);
@@ -137,6 +150,11 @@ class NavSession {
   std::deque<QueuedImu> slow_replay_imu_;  // IMU samples and fixes the aligners took after slow_result_
   std::vector<GnssFix> slow_replay_gnss_;
   std::optional<Alignment> trial_;  // aligned from the course: which body heading? (course_hypotheses > 1)
+  double trial_window_s_ = 0.0;     // its data window: course_trial_s, grown while the headings tie
+  std::deque<ImuIncrement> pre_start_imu_;  // the data the aligner took, for measure_noise_before_start
+  std::vector<GnssFix> pre_start_gnss_;
+  bool noise_measured_ = false;
+  std::string noise_note_;  // what measure_noise_before_start found, for the initialisation line
   std::deque<QueuedImu> imu_queue_;
   std::deque<GnssFix> gnss_queue_;          // fixes not yet handed over, in time order
   std::deque<ObservationPtr> other_queue_;  // other sensors' readings not yet handed over, in time order

@@ -335,7 +335,7 @@ void estimate_and_remove_imu_latency(const NavInputArgs& a, bool shift_given, Na
   if (!wanted || in.imu.empty() || in.gnss.empty()) return;
   in.imu_latency = est::estimate_imu_latency(in.imu, in.gnss);
   const est::ImuLatencyEstimate& e = in.imu_latency;
-  char note[320];
+  char note[400];
   if (!e.valid) {
     std::snprintf(note, sizeof note, "; IMU latency not estimated (%d turning GNSS intervals)", e.turning_intervals);
   } else if (e.significant()) {
@@ -343,8 +343,10 @@ void estimate_and_remove_imu_latency(const NavInputArgs& a, bool shift_given, Na
     in.imu_latency_applied = true;
     std::snprintf(note, sizeof note, "; IMU stamps late by %.1f +- %.1f ms (found from the turns, taken out)",
                   1e3 * e.lag_s, 1e3 * e.sigma_s);
-  } else if (std::abs(e.lag_s) > 3.0 * e.sigma_s && e.sigma_s < 0.02) {
-    // A lag or a forward lever arm: the filter over the whole file decides, with and without the lag.
+  } else if (std::abs(e.lag_s) > 3.0 * e.sigma_s) {
+    // A lag or a forward lever arm, or a lag the turns know only to 20 ms or worse (few or gentle turns: a
+    // reversing manoeuvre's 281 ms read as 274 +- 29): the filter over the whole file decides, with and without
+    // the lag. A residual of a lag taken out is the likelihood scan's to refine (refine_latency_with_filter).
     const double noise_without = imu_noise_needed(in, in.imu);
     std::vector<ImuIncrement> lagged = shifted(in.imu, e.lag_s);
     const double noise_with = imu_noise_needed(in, lagged);
@@ -353,11 +355,15 @@ void estimate_and_remove_imu_latency(const NavInputArgs& a, bool shift_given, Na
       in.imu = std::move(lagged);
       in.imu_latency_applied = true;
     }
-    std::snprintf(note, sizeof note,
-                  "; IMU latency %.1f +- %.1f ms: within what a forward antenna lever arm of %.1f m explains at %.1f m/s "
-                  "(%.0f ms); the filter needs %.3gx the IMU noise with it, %.3gx without: %s",
-                  1e3 * e.lag_s, 1e3 * e.sigma_s, est::ImuLatencyEstimate::kMaxLeverArmAlong_m, e.median_speed_mps,
-                  1e3 * e.lever_arm_equivalent_lag_s(), noise_with, noise_without,
+    char why[160];
+    if (e.sigma_s >= est::ImuLatencyEstimate::kMaxSigma_s)
+      std::snprintf(why, sizeof why, "known by the turns to %.0f ms only", 1e3 * e.sigma_s);
+    else
+      std::snprintf(why, sizeof why, "within what a forward antenna lever arm of %.1f m explains at %.1f m/s (%.0f ms)",
+                    est::ImuLatencyEstimate::kMaxLeverArmAlong_m, e.median_speed_mps,
+                    1e3 * e.lever_arm_equivalent_lag_s());
+    std::snprintf(note, sizeof note, "; IMU latency %.1f +- %.1f ms: %s; the filter needs %.3gx the IMU noise with it, %.3gx without: %s",
+                  1e3 * e.lag_s, 1e3 * e.sigma_s, why, noise_with, noise_without,
                   take ? "a lag, taken out" : "not applied (the time_offset and lever_arm effects can estimate it)");
   } else {
     std::snprintf(note, sizeof note, "; IMU latency %.1f +- %.1f ms (not significant, not applied)", 1e3 * e.lag_s,
