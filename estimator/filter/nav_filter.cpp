@@ -105,8 +105,7 @@ void NavFilter::initialize(const NavState& s, const NavStd& std) {
   }
   c_.P = var.asDiagonal();
   c_.acc_B = Eigen::Matrix<double, 9, Eigen::Dynamic>::Zero(9, m_);
-  c_.detector = StaticDetector(opt_.zupt.window_s, opt_.zupt.f_std_mps2, opt_.zupt.omega_max_rad_s,
-                               opt_.vrw_mps_per_sqrt_s.maxCoeff(), opt_.arw_rad_per_sqrt_s.maxCoeff());
+  reset_static_detector();
   c_.mech.reset(s);
   c_.updaters = make_updaters(opt_);
   c_.initialized = true;
@@ -629,6 +628,15 @@ bool NavFilter::fill_unset_white_noise(const Vec3& arw_rad_per_sqrt_s, const Vec
 void NavFilter::set_imu_noise_floor(const ImuNoiseScale& psd_floor) {
   if (std::isfinite(psd_floor.gyro)) c_.imu_noise_floor.gyro = std::clamp(psd_floor.gyro, 1.0, kMaxImuNoiseScale);
   if (std::isfinite(psd_floor.accel)) c_.imu_noise_floor.accel = std::clamp(psd_floor.accel, 1.0, kMaxImuNoiseScale);
+  reset_static_detector();
+}
+
+void NavFilter::reset_static_detector() {
+  // The ZUPT's static detector allows for the IMU's noise as installed (the floor): with the datasheet's, an IMU
+  // vibrating at 10x never looked static, and a tactical one stopped in a GNSS outage drifted 80 m in 30 s.
+  c_.detector = StaticDetector(opt_.zupt.window_s, opt_.zupt.f_std_mps2, opt_.zupt.omega_max_rad_s,
+                               opt_.vrw_mps_per_sqrt_s.maxCoeff() * std::sqrt(c_.imu_noise_floor.accel),
+                               opt_.arw_rad_per_sqrt_s.maxCoeff() * std::sqrt(c_.imu_noise_floor.gyro));
 }
 
 void NavFilter::correct(const Eigen::VectorXd& dx) {

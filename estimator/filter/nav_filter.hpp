@@ -158,6 +158,7 @@ class NavFilter {
   RejectRun& reject_run(SensorName sensor);
   void correct(const Eigen::VectorXd& dx);
   void rebuild_error_model();
+  void reset_static_detector();  // for the configured noise times the floor
   void check_health(bool full);
   void reset_covariance();
   void announce_restart();  // to the observer: the covariance does not follow from the one before

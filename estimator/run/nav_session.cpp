@@ -44,8 +44,9 @@ AlignmentOptions NavSession::slow_course_options() const {
   return slow;
 }
 
-void NavSession::set_warm_start(const NavState& saved, const NavStd& saved_std) {
+void NavSession::set_warm_start(const NavState& saved, const NavStd& saved_std, const Vec3& saved_gyro_bias_rad_s) {
   warm_ = std::make_pair(saved, saved_std);
+  warm_gyro_bias_rad_s_ = saved_gyro_bias_rad_s;
 }
 
 void NavSession::add_imu(const ImuIncrement& raw, int week, double arrival_s) {
@@ -477,14 +478,16 @@ bool NavSession::try_warm_start(const ImuIncrement& imu) {
   // then and now: the saved attitude turned by the change of the course over ground.
   sd.att_rad = saved_std.att_rad + Vec3(0.5, 0.5, 5.0) * kDegToRad;
   if (course_turned) sd.att_rad.z() = saved_std.att_rad.z() + o_.alignment.cog_yaw_std_rad;
-  start(s, sd, "warm start", std::nullopt);
+  const Vec3& bias = warm_gyro_bias_rad_s_;
+  start(s, sd, "warm start", bias.isZero() ? std::nullopt : std::optional<Vec3>(bias));
   return true;
 }
 
 void NavSession::start(const NavState& s, const NavStd& sd, const std::string& how,
                        const std::optional<Vec3>& gyro_bias_seed) {
   filter_.initialize(s, sd);
-  // A turn-on bias the alignment's static start showed is taken out of every increment (not kept by a warm start).
+  // A turn-on bias the alignment's static start showed (or a warm start's saved gyro bias) is taken out of every
+  // increment.
   if (gyro_bias_seed) {
     filter_.set_input_gyro_bias(*gyro_bias_seed);
     gyro_bias_seed_rad_s_ = *gyro_bias_seed;

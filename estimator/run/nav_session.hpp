@@ -77,8 +77,9 @@ class NavSession {
   // Drives `filter` (the caller keeps it: its observer, its results after the run).
   NavSession(SessionOptions options, NavFilter& filter, EpochSink on_epoch);
 
-  // A service's saved attitude and velocity: used with the first GNSS fix if it comes within 1 s.
-  void set_warm_start(const NavState& saved, const NavStd& saved_std);
+  // A service's saved attitude and velocity: used with the first GNSS fix if it comes within 1 s. The saved gyro
+  // bias (the one its filter took out) is taken out of every increment, as an alignment's turn-on bias is.
+  void set_warm_start(const NavState& saved, const NavStd& saved_std, const Vec3& saved_gyro_bias_rad_s = Vec3::Zero());
 
   void add_imu(const ImuIncrement& imu, int gps_week, double arrival_s);
   void add_gnss(const GnssFix& fix, double arrival_s);
@@ -162,6 +163,7 @@ class NavSession {
   double latest_imu_seen_t_s_ = -1e300;  // the latest IMU sample received, used or not
   double latest_imu_arrival_s_ = -1e300;
   std::optional<std::pair<NavState, NavStd>> warm_;
+  Vec3 warm_gyro_bias_rad_s_ = Vec3::Zero();
   std::optional<GnssFix> warm_fix_;
   std::string initialisation_, given_note_, redo_note_;
   bool given_pending_ = false;  // the data started after the given state's time: the GNSS decides

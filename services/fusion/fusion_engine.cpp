@@ -39,6 +39,11 @@ void FusionEngine::on_observation(est::ObservationPtr reading, double arrival_s,
   out_ = nullptr;
 }
 
+WarmState FusionEngine::warm_state(double host_time_s) const {
+  return {host_time_s, filter_.state(), filter_.nav_std(),
+          filter_.options().input_gyro_bias_rad_s + filter_.error_model().gyro_bias_rad_s};
+}
+
 bool FusionEngine::wants_odometer() const { return filter_.options().aids.has("odometer"); }
 
 void FusionEngine::on_wheel_speed(const ldv_lcm::wheel_speed_t& m, double arrival_s, std::vector<FusionOutput>& out) {

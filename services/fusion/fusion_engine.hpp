@@ -48,7 +48,11 @@ class FusionEngine {
   void set_epoch_observer(est::NavSession::EpochSink observer) { epoch_observer_ = std::move(observer); }
 
   // Optional: resume from a saved state (used until the first GNSS fix arrives).
-  void set_warm_start(const WarmState& saved) { session_.set_warm_start(saved.state, saved.std); }
+  void set_warm_start(const WarmState& saved) {
+    session_.set_warm_start(saved.state, saved.std, saved.gyro_bias_rad_s);
+  }
+  // What set_warm_start takes: the filter's state now, with the gyro bias it takes out.
+  WarmState warm_state(double host_time_s) const;
 
   // Appends the navigation outputs this sample produced (none while aligning).
   void on_imu(const ImuIncrement& imu, int gps_week, double arrival_s, std::vector<FusionOutput>& out);

@@ -172,7 +172,7 @@ int main(int argc, char** argv) {
       rt.set_state(!engine.navigating() ? 0 : refusing ? 2 : 1);
       rt.tick();
       if (!cfg.state_file.empty() && engine.navigating() && ldv::host_time_s() >= next_save_s) {
-        ldv::save_warm_state(cfg.state_file, {ldv::host_time_s(), engine.filter().state(), engine.filter().nav_std()});
+        ldv::save_warm_state(cfg.state_file, engine.warm_state(ldv::host_time_s()));
         next_save_s = ldv::host_time_s() + 1.0;
       }
     }

@@ -1,7 +1,8 @@
 #pragma once
 // The fusion service's saved state for a warm restart (a small YAML file in its StateDirectory,
 // written about once a second). Only what survives a restart gap of a few seconds is used:
-// attitude and velocity; position comes from the next GNSS fix.
+// attitude, velocity and the gyro bias (a MEMS turn-on bias of tenths of a deg/s, which the static start
+// measured and a restart while moving cannot); position comes from the next GNSS fix.
 #include <optional>
 #include <string>
 
@@ -13,6 +14,9 @@ struct WarmState {
   double saved_host_time_s = 0.0;
   est::NavState state;
   est::NavStd std;
+  // The gyro bias the filter took out [rad/s, body]: the alignment's turn-on bias plus the filter's estimate.
+  // Files saved before it was kept read as zero.
+  Vec3 gyro_bias_rad_s = Vec3::Zero();
 };
 
 void save_warm_state(const std::string& path, const WarmState& w);  // atomic (write + rename)
