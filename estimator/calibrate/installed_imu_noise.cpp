@@ -125,8 +125,8 @@ InstalledImuNoise measure_installed_imu_noise(const std::vector<ImuIncrement>& i
     while (later < gnss.size() && gnss[later].t_s - gnss[k].t_s < kStillWindow_s) ++later;
     if (later == gnss.size()) break;
     const double dt = gnss[later].t_s - gnss[k].t_s;
-    const double chord_std_m = std::hypot(gnss[k].pos_std_ned_m.head<2>().maxCoeff(),
-                                          gnss[later].pos_std_ned_m.head<2>().maxCoeff());
+    const double chord_std_m =
+        std::hypot(gnss[k].pos_std_ned_m.head<2>().maxCoeff(), gnss[later].pos_std_ned_m.head<2>().maxCoeff());
     const double moved_m = earth::ned_between(gnss[k].pos, gnss[later].pos).head<2>().norm();
     const bool still = dt <= kMaxWindow_s && moved_m < max_speed_mps * dt + kNoiseSigmas * chord_std_m;
     if (still && !in_run) run_t0 = gnss[k].t_s;

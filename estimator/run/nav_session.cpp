@@ -329,7 +329,9 @@ void NavSession::measure_noise_before_start() {
   const bool filled = filter_.fill_unset_white_noise(noise.arw_rad_per_sqrt_s, noise.vrw_mps_per_sqrt_s);
   o_.imu_noise_floor = noise.psd_scale(filter_.options().arw_rad_per_sqrt_s, filter_.options().vrw_mps_per_sqrt_s);
   char b[200];
-  std::snprintf(b, sizeof b, "; IMU noise as installed over the %.0f s standstill before the start: gyro %.3gx, accel %.3gx the configured PSD%s",
+  std::snprintf(b, sizeof b,
+                "; IMU noise as installed over the %.0f s standstill before the start: gyro %.3gx, accel %.3gx the "
+                "configured PSD%s",
                 noise.standstill_s, o_.imu_noise_floor->gyro, o_.imu_noise_floor->accel,
                 filled ? " (a white noise configured as 0 took the standstill's)" : "");
   noise_note_ = b;
@@ -406,7 +408,8 @@ void NavSession::run_heading_trial(bool at_end) {
       // Each fix adds at most the gate: one GNSS outlier (a 1 m jump, NIS 1000s under the right heading) must
       // not outweigh a wrong heading's steady misfit.
       for (const auto& r : trial.take_innovations())
-        if (r.sensor == sensors::kGnssPosition) cost_of[k] += std::min(r.nis, trial.gate_threshold(r.innovation.size()));
+        if (r.sensor == sensors::kGnssPosition)
+          cost_of[k] += std::min(r.nis, trial.gate_threshold(r.innovation.size()));
     }
   }
   if (!misfit) {

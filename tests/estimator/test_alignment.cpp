@@ -20,7 +20,8 @@ void static_sensing(const Vec3& rpy, double lat, Vec3& f_b, Vec3& w_b) {
 
 TEST(Alignment, LevellingAndGyrocompassingAnyMountingIncludingUpsideDown) {
   const double lat = 40.0 * kDegToRad;
-  for (const Vec3& rpy_deg : {Vec3(0, 0, 30), Vec3(178, 5, -120), Vec3(-175, -20, 75), Vec3(90, 10, 10), Vec3(3, 60, 200 - 360)}) {
+  for (const Vec3& rpy_deg :
+       {Vec3(0, 0, 30), Vec3(178, 5, -120), Vec3(-175, -20, 75), Vec3(90, 10, 10), Vec3(3, 60, 200 - 360)}) {
     const Vec3 rpy = rpy_deg * kDegToRad;
     Vec3 f, w;
     static_sensing(rpy, lat, f, w);

@@ -135,9 +135,10 @@ TEST(WarmStart, GivenAMemsTurnOnBias_WhenFusionRestartsWhileMoving_ThenTheSavedG
   std::string how_with, how_without;
   const double with_bias = worst_heading_after_restart(sim, so, saved, restart_s, 60.0, &how_with);
   const double no_bias = worst_heading_after_restart(sim, so, without, restart_s, 60.0, &how_without);
-  std::printf("heading error when saved %.2f deg, turn in the 2 s gap %.2f deg; worst in the 60 s after the "
-              "restart: %.2f deg with the saved gyro bias, %.2f deg without\n",
-              saved_error_deg, gap_turn_deg, with_bias, no_bias);
+  std::printf(
+      "heading error when saved %.2f deg, turn in the 2 s gap %.2f deg; worst in the 60 s after the "
+      "restart: %.2f deg with the saved gyro bias, %.2f deg without\n",
+      saved_error_deg, gap_turn_deg, with_bias, no_bias);
   ASSERT_NE(how_with.find("warm start"), std::string::npos) << how_with;
   // The heading the service had is kept (the filter's std is 22 deg here: 1 Hz fixes and long straights leave
   // the datasheet model's heading loose, so nothing pulls it in); without the bias it runs off.
