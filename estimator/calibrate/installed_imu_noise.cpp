@@ -99,6 +99,23 @@ double white_psd(const std::vector<double>& r, double dt) {
   return white_part(p, g, kRising);
 }
 
+// The median over consecutive windows of window_s of the std of |f| (the rates' last three components).
+double windowed_norm_scatter(const std::vector<Eigen::Matrix<double, 6, 1>>& rates, double dt, double window_s) {
+  const size_t n = std::max<size_t>(2, static_cast<size_t>(std::lround(window_s / dt)));
+  std::vector<double> stds;
+  for (size_t start = 0; start + n <= rates.size(); start += n) {
+    double sum = 0.0, sum2 = 0.0;
+    for (size_t k = start; k < start + n; ++k) {
+      const double f = rates[k].tail<3>().norm();
+      sum += f;
+      sum2 += f * f;
+    }
+    const double mean = sum / static_cast<double>(n);
+    stds.push_back(std::sqrt(std::max(0.0, sum2 / static_cast<double>(n) - mean * mean)));
+  }
+  return stds.empty() ? 0.0 : median_in_place(stds);
+}
+
 }  // namespace
 
 ImuNoiseScale InstalledImuNoise::psd_scale(const Vec3& arw_configured, const Vec3& vrw_configured) const {
@@ -155,6 +172,7 @@ InstalledImuNoise measure_installed_imu_noise(const std::vector<ImuIncrement>& i
     if (!(psd >= 0.0)) return out;
     density(axis) = std::sqrt(psd);
   }
+  out.f_norm_scatter_mps2 = windowed_norm_scatter(rates, dt, InstalledImuNoise::kSpecificForceWindow_s);
   out.arw_rad_per_sqrt_s = density.head<3>();
   out.vrw_mps_per_sqrt_s = density.tail<3>();
   out.standstill_s = best_t1 - best_t0;

@@ -17,6 +17,11 @@ struct InstalledImuNoise {
   double standstill_s = 0.0;
   Vec3 arw_rad_per_sqrt_s = Vec3::Zero();  // gyro white-noise density measured per axis
   Vec3 vrw_mps_per_sqrt_s = Vec3::Zero();  // accel
+  // What the ZUPT's static detector sees at rest: the median over kSpecificForceWindow_s windows of the std of
+  // |f| [m/s^2]. The white noise and an engine's harmonics together (the densities above are the white part
+  // only: at idle the harmonics scatter a tactical IMU's |f| several times beyond it).
+  static constexpr double kSpecificForceWindow_s = 0.5;
+  double f_norm_scatter_mps2 = 0.0;
   // The factors on the configured PSDs that cover the measured noise, gyro and accel apart (each the median
   // over axes of the squared density ratio; at least 1).
   ImuNoiseScale psd_scale(const Vec3& arw_configured, const Vec3& vrw_configured) const;

@@ -631,12 +631,19 @@ void NavFilter::set_imu_noise_floor(const ImuNoiseScale& psd_floor) {
   reset_static_detector();
 }
 
+void NavFilter::set_standstill_f_scatter(double f_scatter_mps2) {
+  if (std::isfinite(f_scatter_mps2) && f_scatter_mps2 >= 0.0) c_.standstill_f_scatter_mps2 = f_scatter_mps2;
+  reset_static_detector();
+}
+
 void NavFilter::reset_static_detector() {
-  // The ZUPT's static detector allows for the IMU's noise as installed (the floor): with the datasheet's, an IMU
-  // vibrating at 10x never looked static, and a tactical one stopped in a GNSS outage drifted 80 m in 30 s.
+  // The ZUPT's static detector allows for the IMU's noise as installed (the floor, and the scatter of |f| a
+  // standstill showed): with the datasheet's, an IMU vibrating at 10x never looked static, and a tactical one
+  // stopped in a GNSS outage drifted 80 m in 30 s.
   c_.detector = StaticDetector(opt_.zupt.window_s, opt_.zupt.f_std_mps2, opt_.zupt.omega_max_rad_s,
                                opt_.vrw_mps_per_sqrt_s.maxCoeff() * std::sqrt(c_.imu_noise_floor.accel),
-                               opt_.arw_rad_per_sqrt_s.maxCoeff() * std::sqrt(c_.imu_noise_floor.gyro));
+                               opt_.arw_rad_per_sqrt_s.maxCoeff() * std::sqrt(c_.imu_noise_floor.gyro),
+                               c_.standstill_f_scatter_mps2);
 }
 
 void NavFilter::correct(const Eigen::VectorXd& dx) {

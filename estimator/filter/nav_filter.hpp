@@ -80,6 +80,9 @@ class NavFilter {
   // The floor: the noise as installed, e.g. what a standstill in the data showed (installed_imu_noise.hpp), set
   // after initialize; without it the configuration. The adaptation never goes below it.
   void set_imu_noise_floor(const ImuNoiseScale& psd_floor);
+  // The std of |f| a standstill showed (InstalledImuNoise::f_norm_scatter_mps2), for the ZUPT's static detector:
+  // an engine's harmonics at idle are in it, not in the floor. After initialize.
+  void set_standstill_f_scatter(double f_scatter_mps2);
   const ImuNoiseScale& imu_noise_floor() const { return c_.imu_noise_floor; }
   // What the filter runs with: the floor times the adapted factor, on the configured PSDs.
   ImuNoiseScale imu_noise_psd_scale() const {
@@ -138,6 +141,7 @@ class NavFilter {
     // it one factor adapted from the GNSS position NIS (>= 1). Vibration of an installed IMU is often 10x
     // its datasheet noise.
     ImuNoiseScale imu_noise_floor;
+    double standstill_f_scatter_mps2 = 0.0;  // set_standstill_f_scatter
     double imu_noise_scale = 1.0;
     std::deque<Event> applied;  // readings applied within the history horizon (what a snapshot contains)
   };

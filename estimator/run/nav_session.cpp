@@ -328,6 +328,7 @@ void NavSession::measure_noise_before_start() {
   if (!noise.found) return;
   const bool filled = filter_.fill_unset_white_noise(noise.arw_rad_per_sqrt_s, noise.vrw_mps_per_sqrt_s);
   o_.imu_noise_floor = noise.psd_scale(filter_.options().arw_rad_per_sqrt_s, filter_.options().vrw_mps_per_sqrt_s);
+  o_.standstill_f_scatter_mps2 = noise.f_norm_scatter_mps2;
   char b[200];
   std::snprintf(b, sizeof b,
                 "; IMU noise as installed over the %.0f s standstill before the start: gyro %.3gx, accel %.3gx the "
@@ -495,7 +496,10 @@ void NavSession::start(const NavState& s, const NavStd& sd, const std::string& h
     filter_.set_input_gyro_bias(*gyro_bias_seed);
     gyro_bias_seed_rad_s_ = *gyro_bias_seed;
   }
-  if (o_.imu_noise_floor && filter_.options().adapt_imu_noise) filter_.set_imu_noise_floor(*o_.imu_noise_floor);
+  if (o_.imu_noise_floor && filter_.options().adapt_imu_noise) {
+    filter_.set_imu_noise_floor(*o_.imu_noise_floor);
+    filter_.set_standstill_f_scatter(o_.standstill_f_scatter_mps2);
+  }
   initialisation_ = (redo_note_.empty() ? given_note_ + how : redo_note_ + how) + noise_note_;
   noise_note_.clear();  // said once: a redo's note starts with this one
   started_at_s_ = s.t_s;

@@ -47,6 +47,9 @@ struct SessionOptions {
   // kPreStartKept_s before the alignment (FilterOptions::installed_noise_floor), and a white-noise density
   // configured as 0 takes that standstill's measurement (NavFilter::fill_unset_white_noise), as offline.
   std::optional<ImuNoiseScale> imu_noise_floor;
+  // With it: the std of |f| that standstill showed (InstalledImuNoise::f_norm_scatter_mps2; 0: none), for the
+  // ZUPT's static detector.
+  double standstill_f_scatter_mps2 = 0.0;
   // A failed alignment is redone (robust runs, FilterOptions::robust_update): when the horizontal velocity
   // changes the IMU senses, in the navigated attitude, are turned by more than this against the GNSS track's
   // (heading_check.hpp), and by more than 3 sigma of the filter's heading std, the heading has failed (a false

@@ -232,6 +232,7 @@ RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vecto
   RunSummary sum;
   size_t i = first_imu_index(imu, cfg);
   std::optional<ImuNoiseScale> noise_floor;
+  double standstill_f_scatter_mps2 = 0.0;
   if (filter.options().adapt_imu_noise && filter.options().installed_noise_floor) {
     const InstalledImuNoise noise = measure_installed_imu_noise(imu, gnss);
     if (noise.found) {
@@ -241,9 +242,11 @@ RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vecto
     }
     noise_floor = noise.psd_scale(filter.options().arw_rad_per_sqrt_s, filter.options().vrw_mps_per_sqrt_s);
     sum.imu_noise_standstill_s = noise.found ? noise.standstill_s : 0.0;
+    if (noise.found) standstill_f_scatter_mps2 = noise.f_norm_scatter_mps2;
   }
   SessionOptions so = session_options_from(cfg, filter.options(), alignment);
   so.imu_noise_floor = noise_floor;
+  so.standstill_f_scatter_mps2 = standstill_f_scatter_mps2;
   NavSession session(so, filter, [&](const NavFilter& f, int) {
     if (cb.on_innovation)
       for (const auto& r : filter.take_innovations()) cb.on_innovation(r);

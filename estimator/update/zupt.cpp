@@ -98,7 +98,7 @@ bool StaticDetector::add(double dt_s, const Vec3& omega_ib_b, const Vec3& f_b) {
   const double n = static_cast<double>(window_.size());
   const double mean_f = sum_f_ / n;
   const double var_f = std::max(0.0, sum_f2_ / n - mean_f * mean_f);
-  const double sigma_f = vrw_ / std::sqrt(dt_s), sigma_w = arw_ / std::sqrt(dt_s);
+  const double sigma_f = std::max(vrw_ / std::sqrt(dt_s), f_scatter_at_rest_), sigma_w = arw_ / std::sqrt(dt_s);
   static_ = std::sqrt(var_f) < f_std_ + 2.0 * sigma_f && (sum_w_ / n).norm() < w_max_ + 4.0 * sigma_w / std::sqrt(n);
   return static_;
 }
