@@ -360,10 +360,12 @@ void estimate_and_remove_imu_latency(const NavInputArgs& a, bool shift_given, Na
     char why[160];
     if (e.sigma_s >= est::ImuLatencyEstimate::kMaxSigma_s)
       std::snprintf(why, sizeof why, "known by the turns to %.0f ms only", 1e3 * e.sigma_s);
-    else
+    else if (std::abs(e.lag_s) <= e.lever_arm_equivalent_lag_s())
       std::snprintf(why, sizeof why, "within what a forward antenna lever arm of %.1f m explains at %.1f m/s (%.0f ms)",
                     est::ImuLatencyEstimate::kMaxLeverArmAlong_m, e.median_speed_mps,
                     1e3 * e.lever_arm_equivalent_lag_s());
+    else
+      std::snprintf(why, sizeof why, "only %.1f of the turns' sigmas", std::abs(e.lag_s) / e.sigma_s);
     std::snprintf(note, sizeof note,
                   "; IMU latency %.1f +- %.1f ms: %s; the filter needs %.3gx the IMU noise with it, %.3gx without: %s",
                   1e3 * e.lag_s, 1e3 * e.sigma_s, why, noise_with, noise_without,
