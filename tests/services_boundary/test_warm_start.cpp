@@ -22,6 +22,18 @@ fs::path temp_file(const std::string& name) {
   return fs::temp_directory_path() / ("ldv_warm_" + std::to_string(::getpid()) + "_" + name);
 }
 
+// The truth at the IMU epoch t_s.
+const sim::TruthSample& truth_at(const sim::SimResult& sim, double t_s) {
+  const auto it = std::lower_bound(sim.truth.begin(), sim.truth.end(), t_s - 1e-6,
+                                   [](const sim::TruthSample& x, double t) { return x.t_s < t; });
+  return it == sim.truth.end() ? sim.truth.back() : *it;
+}
+
+// How far apart two headings are [deg], 0-180.
+double headings_apart_deg(double a_rad, double b_rad) {
+  return std::abs(std::remainder(a_rad - b_rad, 2.0 * kPi)) * kRadToDeg;
+}
+
 // The worst heading error [deg] over the first `window_s` after a fusion engine warm-started from `saved` at
 // `restart_s` (the data before it are not fed: the service was down), with the fixes 0.2 s late as live.
 double worst_heading_after_restart(const sim::SimResult& sim, const est::SessionOptions& so, const WarmState& saved,
@@ -30,7 +42,7 @@ double worst_heading_after_restart(const sim::SimResult& sim, const est::Session
   engine.set_warm_start(saved);
   std::vector<FusionOutput> out;
   double worst = 0.0;
-  size_t g = 0, t = 0;
+  size_t g = 0;
   while (g < sim.gnss.size() && sim.gnss[g].t_s < restart_s) ++g;
   for (const ImuIncrement& imu : sim.imu) {
     if (imu.t_s < restart_s) continue;
@@ -38,11 +50,8 @@ double worst_heading_after_restart(const sim::SimResult& sim, const est::Session
     for (; g < sim.gnss.size() && sim.gnss[g].t_s + 0.2 <= imu.t_s; ++g) engine.on_gnss(sim.gnss[g], imu.t_s);
     out.clear();
     engine.on_imu(imu, 2300, imu.t_s, out);
-    for (const FusionOutput& o : out) {
-      while (t + 1 < sim.truth.size() && sim.truth[t].t_s < o.state.t_s - 1e-6) ++t;
-      const double e = std::abs(std::remainder(o.state.rpy_rad().z() - sim.truth[t].rpy_rad.z(), 2.0 * kPi));
-      worst = std::max(worst, e * kRadToDeg);
-    }
+    for (const FusionOutput& o : out)
+      worst = std::max(worst, headings_apart_deg(o.state.rpy_rad().z(), truth_at(sim, o.state.t_s).rpy_rad.z()));
   }
   *how = engine.initialisation();
   return worst;
@@ -117,17 +126,11 @@ TEST(WarmStart, GivenAMemsTurnOnBias_WhenFusionRestartsWhileMoving_ThenTheSavedG
   }
   ASSERT_TRUE(before.navigating());
   const WarmState saved = before.warm_state(0.0);
-  const auto truth = std::lower_bound(sim.truth.begin(), sim.truth.end(), saved.state.t_s - 1e-6,
-                                      [](const sim::TruthSample& x, double t) { return x.t_s < t; });
-  ASSERT_NE(truth, sim.truth.end());
-  const double saved_error_deg =
-      std::abs(std::remainder(saved.state.rpy_rad().z() - truth->rpy_rad.z(), 2.0 * kPi)) * kRadToDeg;
+  const double saved_yaw_rad = truth_at(sim, saved.state.t_s).rpy_rad.z();
+  const double saved_error_deg = headings_apart_deg(saved.state.rpy_rad().z(), saved_yaw_rad);
   // The vehicle's turn while the service was down (the warm start turns the attitude by the course's change only
   // where the fixes carry a velocity; these do not).
-  const auto at_restart = std::lower_bound(sim.truth.begin(), sim.truth.end(), restart_s,
-                                           [](const sim::TruthSample& x, double t) { return x.t_s < t; });
-  const double gap_turn_deg =
-      std::abs(std::remainder(at_restart->rpy_rad.z() - truth->rpy_rad.z(), 2.0 * kPi)) * kRadToDeg;
+  const double gap_turn_deg = headings_apart_deg(truth_at(sim, restart_s).rpy_rad.z(), saved_yaw_rad);
   EXPECT_GT(saved.gyro_bias_rad_s.norm() * kRadToDeg, 0.5) << "the turn-on bias the alignment took out is in it";
 
   WarmState without = saved;
