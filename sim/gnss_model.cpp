@@ -114,7 +114,7 @@ GnssRun simulate_gnss(const MotionProfile& m, const std::vector<TruthSample>& tr
     const double t_label = t_label_sow - t0_sow;
     bool in_outage = false;
     for (const auto& o : sch.outages) in_outage |= t_label >= o.start_s && t_label < o.start_s + o.length_s;
-    const double t_meas = t_label - sch.time_offset_s;  // the fix labelled t was taken at IMU time t - offset
+    const double t_meas = t_label;
     if (in_outage || t_meas < 0.0 || t_meas > t_end) continue;
 
     const AntennaTruth ant = antenna_truth_at(m, truth, dt, t_meas, sch.lever_arm_b_m);

@@ -1,7 +1,7 @@
 #pragma once
-// GNSS solutions at the antenna: truth position (lever arm applied, taken at IMU time
-// t_label - time_offset) plus white and Gauss-Markov (coloured) noise per NED axis at the level of
-// the solution type, scheduled outages and a reporting latency.
+// GNSS solutions at the antenna: truth position (lever arm applied, taken at the epoch it is labelled with:
+// GPS time; a time_offset is put on the IMU's tags) plus white and Gauss-Markov (coloured) noise per NED axis at the
+// level of the solution type, scheduled outages and a reporting latency.
 #include <string>
 #include <vector>
 
@@ -31,7 +31,6 @@ struct GnssSchedule {
   };
   std::vector<Window> outages;  // run time
   Vec3 lever_arm_b_m = Vec3::Zero();
-  double time_offset_s = 0.0;
   double latency_mean_s = 0.08, latency_jitter_s = 0.01;  // solution available after its epoch
   bool with_velocity = false;
   bool with_noise = true;

@@ -248,6 +248,7 @@ SimResult simulate(const SimRequest& req, const std::function<void(double)>& pro
   res.imu.resize(n);
   const size_t per_second = std::max<size_t>(1, static_cast<size_t>(std::llround(req.imu_rate_hz)));
   static const Vec3 kZero = Vec3::Zero();
+  const double time_offset_s = fx.scalar("time_offset");  // GNSS tag minus IMU tag
   for (size_t k = 0; k < n; ++k) {
     const double t_mid = (static_cast<double>(k) + 0.5) * dt;
     if (k % per_second == 0) {
@@ -260,8 +261,9 @@ SimResult simulate(const SimRequest& req, const std::function<void(double)>& pro
     if (!res.shocks.empty()) shocks.add(sensed, static_cast<double>(k) * dt, static_cast<double>(k + 1) * dt);
     res.imu[k] = errors.apply(sensed, t_mid, topt.with_squares ? run.omega_sq_integral[k] : kZero,
                               topt.with_squares ? run.f_sq_integral[k] : kZero);
-    // A late IMU: its time tag is the true sample time plus the latency.
-    if (veh.imu_latency_s > 0.0) res.imu[k].t_s += veh.imu_latency_s;
+    // A late IMU: its time tag is the true sample time plus the latency. A time_offset (GNSS tag minus IMU tag) is
+    // the IMU's too: the GNSS tags are GPS time, as a receiver's solution epochs are, and the truth is on them.
+    res.imu[k].t_s += veh.imu_latency_s - time_offset_s;
     if (progress && k % (n / 10 + 1) == 0) progress(0.85 + 0.1 * k / n);
   }
 
@@ -270,7 +272,6 @@ SimResult simulate(const SimRequest& req, const std::function<void(double)>& pro
   sch.rate_hz = req.gnss_rate_hz;
   for (const Outage& o : req.outages) sch.outages.push_back({o.start_s, o.length_s});
   sch.lever_arm_b_m = fx.vec3("lever_arm");
-  sch.time_offset_s = fx.scalar("time_offset");
   sch.latency_mean_s = req.gnss_latency_s;
   sch.with_velocity = req.gnss_velocity;
   sch.with_noise = req.with_noise;

@@ -65,6 +65,10 @@ class NavFilter {
   // Nominal estimates of the effect states (layout offsets minus 9), SI units.
   const Eigen::VectorXd& effect_state() const { return c_.x_eff; }
   const ImuErrorModel& error_model() const { return c_.model; }
+  // The state's epoch on the GNSS (GPS) time scale: the IMU's time plus the time_offset, estimated or configured
+  // (docs/effects.md). What a TSPI row is stamped with: the filter runs on the IMU's clock, and an IMU that tags
+  // 64 ms late shows a vehicle 64 ms back at each of its tags. state().t_s where there is no time offset.
+  double gnss_time_s() const { return c_.nav.t_s + c_.model.time_offset_s; }
   const StateLayout& layout() const { return layout_; }
   const FilterOptions& options() const { return opt_; }
   // FilterOptions::input_gyro_bias_rad_s, set once the alignment has seen it (after initialize).

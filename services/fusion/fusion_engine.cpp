@@ -21,6 +21,7 @@ FusionEngine::FusionEngine(const est::SessionOptions& so)
         FusionOutput o;
         o.gps_week = week;
         o.state = f.state();
+        o.gps_sow_s = f.gnss_time_s();
         o.std = f.nav_std();
         o.status = f.status();
         o.mode = (o.status & est::kStatusGnssOutage) ? FusionMode::kFreeInertial : FusionMode::kAided;

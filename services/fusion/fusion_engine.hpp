@@ -31,6 +31,7 @@ est::SessionOptions live_session_options(const KfGinsConfig& cfg, const est::Fil
 
 struct FusionOutput {
   int gps_week = 0;
+  double gps_sow_s = 0.0;  // the state's epoch on the GNSS time scale (NavFilter::gnss_time_s)
   est::NavState state;
   est::NavStd std;
   std::uint32_t status = 0;

@@ -9,7 +9,7 @@ ldv_lcm::nav_state_t nav_message(const FusionOutput& o, int64_t seq) {
   ldv_lcm::nav_state_t m{};
   m.seq = seq;
   m.gps_week = o.gps_week;
-  m.gps_sow_s = o.state.t_s;
+  m.gps_sow_s = o.gps_sow_s;
   m.lat_deg = o.state.pos.lat_rad * kRadToDeg;
   m.lon_deg = o.state.pos.lon_rad * kRadToDeg;
   m.height_m = o.state.pos.h_m;

@@ -32,7 +32,7 @@ Confirmation confirm(const DiagnoseInputs& in, const est::FilterOptions& model, 
   c.effect = score.name;
   c.options = with_candidate(model, score);
   c.run = run_filter(in, c.options);
-  c.loglik_gain = log_likelihood(c.run.records) - base_loglik;
+  c.loglik_gain = log_likelihood(c.run.records, c.run.gate_probability) - base_loglik;
   c.adjusted_gain = c.loglik_gain / std::max(1.0, long_run_factor);
   c.penalty = 0.5 * score.dim * std::log(std::max(2.0, effective_n));
   c.accepted = c.adjusted_gain > c.penalty;

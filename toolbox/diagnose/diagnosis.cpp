@@ -75,6 +75,7 @@ namespace {
 void measure_imu_noise(const DiagnoseInputs& in, est::FilterOptions& model, Diagnosis& d) {
   const est::InstalledImuNoise noise = est::measure_installed_imu_noise(in.imu, in.gnss);
   d.imu_noise_scale = noise.psd_scale(model.arw_rad_per_sqrt_s, model.vrw_mps_per_sqrt_s);
+  d.imu_noise_standstill_s = noise.found ? noise.standstill_s : 0.0;
   if (d.imu_noise_scale.larger() < kApplyImuNoiseScale) return;
   const FilterRun configured = run_filter(in, model, nullptr);
   ++d.filter_runs;

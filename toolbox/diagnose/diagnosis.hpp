@@ -22,9 +22,10 @@ struct DiagnoseOptions {
   // the gate opened (every measurement used), so the innovations still carry the missing effect.
   double open_gate_above_rejected = 0.2;
   // The IMU noise as installed, measured over a GNSS standstill in the data (est::measure_installed_imu_noise);
-  // above kApplyImuNoiseScale times the configured PSD the diagnosis runs with it (first step of --iterate).
-  // The diagnosis's own runs never adapt their noise.
-  bool measure_imu_noise = false;
+  // above kApplyImuNoiseScale times the configured PSD the diagnosis runs with it (its first step). A vehicle's
+  // vibration puts it 10-300x the datasheet's PSD, and a model that far off the data hides the effects it
+  // is tested for. The diagnosis's own runs never adapt their noise.
+  bool measure_imu_noise = true;
   bool verbose = false;          // progress on stderr
 };
 
@@ -59,6 +60,7 @@ struct Diagnosis {
   // The configured IMU white-noise PSDs times these (gyro, accel) are what the data say (1: not measured or
   // not above the configuration); when applied, configured_check is the model check with the configured noise.
   est::ImuNoiseScale imu_noise_scale;
+  double imu_noise_standstill_s = 0.0;  // the standstill it was measured over (0: none found)
   bool imu_noise_applied = false;
   ModelCheck configured_check;
   bool consistent() const;  // the final model passes its check and the last step adds nothing

@@ -28,7 +28,7 @@ FilterRun run_filter(const DiagnoseInputs& in, const est::FilterOptions& options
     if (s.t_s + 1e-9 < next_epoch_t) return;
     next_epoch_t = s.t_s + kEpochPeriod_s;
     const est::MechanizationStep& st = f.last_step();
-    run.epochs.push_back({s.t_s, s.pos, s.v_n_mps, s.rpy_rad(), st.omega_ib_b_rad_s, st.f_b_mps2, st.a_n_mps2,
+    run.epochs.push_back({f.gnss_time_s(), s.pos, s.v_n_mps, s.rpy_rad(), st.omega_ib_b_rad_s, st.f_b_mps2, st.a_n_mps2,
                           (f.status() & est::kStatusGnssOutage) != 0});
   };
   if (!observer)

@@ -57,20 +57,21 @@ const SensorCheck* ModelCheck::find(est::SensorName k) const {
   return nullptr;
 }
 
-double log_likelihood(const std::vector<SensitivityRecord>& records) {
+double log_likelihood(const std::vector<SensitivityRecord>& records, double gate_probability) {
   double ll = 0.0;
   for (const SensitivityRecord& r : records) {
     const Eigen::LLT<Eigen::MatrixXd> llt(r.S);
     if (llt.info() != Eigen::Success) continue;
     const double log_det = 2.0 * llt.matrixLLT().diagonal().array().log().sum();
-    ll += -0.5 * (log_det + r.innovation.dot(llt.solve(r.innovation)));
+    const double gate = math::chi_square_quantile(gate_probability, static_cast<int>(r.innovation.size()));
+    ll += -0.5 * (log_det + std::min(r.innovation.dot(llt.solve(r.innovation)), gate));
   }
   return ll;
 }
 
 ModelCheck check_model(const FilterRun& run, const std::vector<Segment>& labels, double confidence) {
   ModelCheck mc;
-  mc.loglik = log_likelihood(run.records);
+  mc.loglik = log_likelihood(run.records, run.gate_probability);
   // Every sensor met, GNSS first; rows of a sensor are fixed (the first record's).
   std::vector<est::SensorName> names = {est::sensors::kGnssPosition, est::sensors::kGnssVelocity,
                                         est::sensors::kZeroVelocity};

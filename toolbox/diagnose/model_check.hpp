@@ -46,7 +46,7 @@ struct SensorCheck {
 
 struct ModelCheck {
   std::vector<SensorCheck> sensors;
-  double loglik = 0.0;        // sum of -0.5 (log det S + NIS) over all measurements
+  double loglik = 0.0;  // log_likelihood of the run's measurements at its gate
   double measurement_interval_s = 1.0;
   bool consistent() const;
   const SensorCheck* find(est::SensorName k) const;
@@ -54,7 +54,10 @@ struct ModelCheck {
 
 ModelCheck check_model(const FilterRun& run, const std::vector<Segment>& epoch_labels, double confidence = 0.95);
 
-// Sum over the measurements of -0.5 (log det S + nu^T S^-1 nu).
-double log_likelihood(const std::vector<SensitivityRecord>& records);
+// Sum over the measurements of -0.5 (log det S + min(nu^T S^-1 nu, gate)), the gate being the chi-square
+// quantile of gate_probability for the measurement's rows. Capped as the model check caps its NIS: one
+// 2 m RTK outlier (NIS ~10^4) would otherwise outweigh a whole drive's evidence and decide which model
+// "fits" by how tight its S is at that one fix.
+double log_likelihood(const std::vector<SensitivityRecord>& records, double gate_probability);
 
 }  // namespace ldv::diag

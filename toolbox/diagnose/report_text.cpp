@@ -140,7 +140,15 @@ void print_steps(std::ostream& out, const Diagnosis& d) {
 void print_report(std::ostream& out, const Diagnosis& d) {
   out << "ldv diagnose: model " << d.model << " (";
   for (size_t i = 0; i < d.model_effects.size(); ++i) out << (i ? " " : "") << d.model_effects[i];
-  out << ")\n\n1. Model check\n";
+  out << ")\n";
+  if (d.imu_noise_standstill_s > 0.0)
+    out << "  IMU noise as installed (a " << fmt("%.0f", d.imu_noise_standstill_s) << " s GNSS standstill): gyro x"
+        << fmt("%.1f", d.imu_noise_scale.gyro) << ", accel x" << fmt("%.1f", d.imu_noise_scale.accel)
+        << " the configured white-noise PSD"
+        << (d.imu_noise_applied ? ": the diagnosis runs with it (vibration, or a datasheet value)"
+                                : ": within 2x, the configured noise kept")
+        << "\n";
+  out << "\n1. Model check\n";
   if (d.gate_opened)
     out << "  (the model rejected more than 20 % of the measurements and diverged: diagnosed with the gate opened)\n";
   print_check(out, d.steps.front().check);

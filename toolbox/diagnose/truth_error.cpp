@@ -4,6 +4,8 @@
 #include <cmath>
 
 #include "common/geo/earth_model.hpp"
+#include "common/math/rotation.hpp"
+#include "toolbox/assess/nav_series.hpp"
 
 namespace ldv::diag {
 
@@ -16,12 +18,14 @@ TruthError truth_error(const FilterRun& run, const std::vector<Segment>& labels,
   std::array<double, kSegmentCount> seg_sum{};
   std::array<int, kSegmentCount> seg_n{};
   int n = 0;
+  // Interpolated, not matched to a truth row: epochs whose IMU stamps were shifted (a latency taken out) or
+  // that carry a time offset fall between the truth's rows.
+  const assess::NavSeries truth_series = assess::NavSeries::from_records(truth);
   for (size_t i = 0; i < run.epochs.size(); ++i) {
     const EpochSample& e = run.epochs[i];
-    auto it = std::lower_bound(truth.begin(), truth.end(), e.t_s - 1e-4,
-                               [](const NavRecord& r, double t) { return r.sow_s < t; });
-    if (it == truth.end() || std::abs(it->sow_s - e.t_s) > 2e-3) continue;
-    const Vec3 d = earth::ned_between(it->pos, e.pos);
+    const std::optional<assess::NavSample> tr = truth_series.at(e.t_s);
+    if (!tr) continue;
+    const Vec3 d = earth::ned_between(tr->pos, e.pos);
     te.t_s.push_back(e.t_s);
     te.pos_err_ned_m.push_back(d);
     if (e.t_s < t0) continue;
@@ -30,7 +34,7 @@ TruthError truth_error(const FilterRun& run, const std::vector<Segment>& labels,
     sh += d.head<2>().squaredNorm();
     sv += d.z() * d.z();
     te.max_horizontal_m = std::max(te.max_horizontal_m, d.head<2>().norm());
-    double dyaw = std::remainder(e.rpy_rad.z() - it->rpy_rad.z(), 2.0 * kPi);
+    const double dyaw = std::remainder(e.rpy_rad.z() - euler_from_C_b_n(tr->q_b_n.toRotationMatrix()).z(), 2.0 * kPi);
     syaw += dyaw * dyaw;
     const int s = static_cast<int>(labels[i]);
     seg_sum[s] += d.squaredNorm();

@@ -1,5 +1,6 @@
 #pragma once
-// Navigation error of a run against truth (truth.nav: IMU centre), at the run's 10 Hz epochs.
+// Navigation error of a run against truth (truth.nav: IMU centre), at the run's 10 Hz epochs (on the GNSS time
+// scale: NavFilter::gnss_time_s), the truth interpolated there.
 #include <array>
 #include <vector>
 

@@ -112,7 +112,6 @@ void run_diagnose(const DiagnoseArgs& a) {
   // --iterate: add the top confirmed effect, rerun, until the model is consistent or nothing more is
   // confirmed (the stepwise search stops by itself; the cap only bounds the run time).
   opt.max_added = a.iterate ? kMaxIterations : a.max_add;
-  opt.measure_imu_noise = a.iterate;
   opt.screening.alpha = a.alpha;
   opt.screening.bandwidth_s = a.bandwidth_s;
   opt.verbose = !a.quiet;

@@ -279,6 +279,7 @@ void run_nav(const NavArgs& a) {
     const est::SmoothedRun run = recorder->smooth(show_progress ? std::function<void(double)>(progress) : nullptr);
     pass = "ldv smooth: writing";
     cli::write_smoothed(run, filter->layout(), nav_path, a.std_rate_hz, filter->options().gyro_quantization_rad,
+                        filter->error_model().time_offset_s,
                         show_progress ? std::function<void(double)>(progress) : nullptr);
     if (show_progress) std::fprintf(stderr, "\r%40s\r", "");
     if (!a.quiet) print_smoothing_summary(run, *recorder, forward_s, forward_path);

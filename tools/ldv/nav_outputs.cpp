@@ -82,10 +82,10 @@ std::string output_base(const std::string& nav_path) {
   return b;
 }
 
-NavRecord nav_record(const est::NavState& s, int week) {
+NavRecord nav_record(const est::NavState& s, int week, double t_gnss_s) {
   NavRecord rec;
   rec.week = week;
-  rec.sow_s = s.t_s;
+  rec.sow_s = t_gnss_s;
   rec.pos = s.pos;
   rec.vel_n_mps = s.v_n_mps;
   rec.rpy_rad = s.rpy_rad();
@@ -103,7 +103,7 @@ NavOutputs::NavOutputs(const std::string& nav_path, const est::NavFilter& f, dou
 
 void NavOutputs::epoch(const est::NavFilter& f, int week) {
   const est::NavState& s = f.state();
-  nav_.write(nav_record(s, week));
+  nav_.write(nav_record(s, week, f.gnss_time_s()));
   if (s.t_s + 1e-9 < next_std_t_) return;
   next_std_t_ = s.t_s + std_period_;
   const est::NavStd nav = f.nav_std();  // the attitude's with the gyros' Q, which no state holds
@@ -111,7 +111,7 @@ void NavOutputs::epoch(const est::NavFilter& f, int week) {
   nav_sd << nav.pos_ned_m, nav.vel_n_mps, nav.att_rad;
   const Eigen::VectorXd P_diag = f.covariance().diagonal();
   const Eigen::VectorXd eff_sd = P_diag.tail(P_diag.size() - est::kNavDim).cwiseMax(0.0).cwiseSqrt();
-  std_row(std_, week, s.t_s, nav_sd, f.layout(), f.effect_state(), eff_sd);
+  std_row(std_, week, f.gnss_time_s(), nav_sd, f.layout(), f.effect_state(), eff_sd);
 }
 
 void NavOutputs::innovation(const est::InnovationRecord& r) {
@@ -132,7 +132,7 @@ void NavOutputs::close() {
 }
 
 void write_smoothed(const est::SmoothedRun& run, const est::StateLayout& layout, const std::string& nav_path,
-                    double std_rate_hz, const Vec3& gyro_quantization_rad,
+                    double std_rate_hz, const Vec3& gyro_quantization_rad, double time_offset_s,
                     const std::function<void(double)>& progress) {
   const std::string base = output_base(nav_path);
   NavWriter nav(nav_path);
@@ -147,7 +147,8 @@ void write_smoothed(const est::SmoothedRun& run, const est::StateLayout& layout,
   double next_t = -1e300;
   for (std::size_t i = 0; i < run.size(); ++i) {
     const est::SmoothedRow r = run.row(i);
-    nav.write(nav_record(r.smoothed, r.week));
+    const double t_gnss_s = r.smoothed.t_s + time_offset_s;
+    nav.write(nav_record(r.smoothed, r.week, t_gnss_s));
     if (progress && i % 20000 == 0) progress(static_cast<double>(i) / run.size());
     if (r.smoothed.t_s + 1e-9 < next_t) continue;
     next_t = r.smoothed.t_s + period;
@@ -156,9 +157,9 @@ void write_smoothed(const est::SmoothedRun& run, const est::StateLayout& layout,
         (nav_sd.segment<3>(est::kAtt).cwiseAbs2() +
          est::attitude_quantization_cov_n(r.smoothed.C_b_n(), gyro_quantization_rad).diagonal())
             .cwiseSqrt();
-    std_row(sd, r.week, r.smoothed.t_s, nav_sd, layout, r.x_eff_smoothed, r.std_eff_smoothed);
+    std_row(sd, r.week, t_gnss_s, nav_sd, layout, r.x_eff_smoothed, r.std_eff_smoothed);
     sep.num(r.week, 0);
-    sep.num(r.smoothed.t_s, 4);
+    sep.num(t_gnss_s, 4);
     for (const est::Vec9* v : {&r.separation, &r.std_separation})
       for (int k = 0; k < 9; ++k) sep.num(k < 6 ? (*v)(k) : (*v)(k)*kRadToDeg, k < 6 ? 5 : 6);
     sep.end_line();

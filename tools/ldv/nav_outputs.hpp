@@ -33,8 +33,8 @@ class TextOut {
 
 // FILE.nav -> FILE (the other outputs are named after it).
 std::string output_base(const std::string& nav_path);
-// KF-GINS's .nav row of a state (yaw in [0, 360)).
-NavRecord nav_record(const est::NavState& s, int week);
+// KF-GINS's .nav row of a state (yaw in [0, 360)), stamped t_gnss_s (NavFilter::gnss_time_s).
+NavRecord nav_record(const est::NavState& s, int week, double t_gnss_s);
 
 // The three outputs of a filter run: .nav at every IMU sample, std rows at std_rate_hz, every innovation.
 class NavOutputs {
@@ -58,8 +58,10 @@ inline constexpr const char* kSeparationHeaderStart = "# week sow sep_n sep_e se
 // them) and FILE_separation.txt at std_rate_hz.
 // gyro_quantization_rad: the gyros' Q, added to the smoothed attitude sigma as the forward filter's (it cancels in the
 // separation: forward and smoothed attitude carry the same white angle error).
+// time_offset_s: the forward filter's final time_offset, added to every row's time (NavFilter::gnss_time_s; a
+// constant state's smoothed value is its last filtered one).
 void write_smoothed(const est::SmoothedRun& run, const est::StateLayout& layout, const std::string& nav_path,
-                    double std_rate_hz, const Vec3& gyro_quantization_rad,
+                    double std_rate_hz, const Vec3& gyro_quantization_rad, double time_offset_s,
                     const std::function<void(double)>& progress = {});
 
 }  // namespace ldv::cli

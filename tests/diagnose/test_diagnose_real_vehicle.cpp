@@ -1,0 +1,103 @@
+// `ldv diagnose` on a vehicle as a new user meets it, by the command line: `ldv sim --realism vehicle` (10x
+// vibration with engine harmonics, a late IMU, the IMU turned in the car, GNSS outliers and velocity lag) run
+// from the datasheet configuration the simulator writes, the JSON read back.
+//  - A hidden antenna lever arm: the verdict adds it and the IMU's latency (as time_offset), the lever arm's
+//    horizontal components and the latency near their true values, and the horizontal error against truth
+//    falls. Before: one 1-3 m RTK outlier (NIS ~10^4) decided the likelihood comparison and the lever arm was
+//    rejected (gain -21639); with a wide prior on the lever arm the body-heading trial chose a heading 90-135
+//    deg off; the rows stayed on the late IMU's clock. Then: verdict time_offset alone. The lever arm's vertical
+//    is not asserted: from a start of unknown height it is seen only through the body's roll and pitch, and
+//    here it reads -0.77 +- 0.08 m for -1.2 (with the start's height known, -1.18 +- 0.02): a limitation the
+//    issue's note records.
+//  - No hidden effect: the installed noise is measured (about 100x the datasheet PSD, the vibration squared) and
+//    nothing is added.
+#include <gtest/gtest.h>
+#include <unistd.h>
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "sim/simulator.hpp"
+
+namespace ldv {
+namespace {
+namespace fs = std::filesystem;
+
+void run(const std::string& args, const fs::path& log) {
+  const std::string cmd = std::string(LDV_BIN_DIR) + "/ldv " + args + " > " + log.string() + " 2>&1";
+  const int rc = std::system(cmd.c_str());
+  std::ifstream f(log);
+  std::stringstream s;
+  s << f.rdbuf();
+  ASSERT_EQ(rc, 0) << cmd << "\n" << s.str();
+}
+
+struct VehicleRun {
+  YAML::Node diagnosis;  // the JSON (JSON is YAML)
+  sim::SimResult sim;
+};
+
+VehicleRun diagnose_vehicle(const std::string& name, const std::vector<std::string>& hidden, std::uint64_t seed) {
+  const fs::path dir = fs::temp_directory_path() / ("ldv_real_vehicle_" + std::to_string(getpid())) / name;
+  sim::SimRequest req;
+  req.grade = "hg1900-typical";
+  req.seed = seed;
+  req.duration_s = 900.0;
+  req.scenario = "drive";
+  req.effects = hidden;
+  req.vehicle.realism = "vehicle";
+  VehicleRun v{YAML::Node(), sim::simulate(req)};
+  sim::write_outputs(v.sim, dir.string());
+  const fs::path json = dir / "diagnosis.json";
+  run("diagnose --kfgins-config " + (dir / "datasheet.yaml").string() + " --truth " + (dir / "truth.nav").string() +
+          " --json " + json.string() + " --quiet",
+      dir / "diagnose.log");
+  v.diagnosis = YAML::LoadFile(json.string());
+  fs::remove_all(dir.parent_path());
+  return v;
+}
+
+std::vector<double> estimate_of(const YAML::Node& d, const std::string& effect) {
+  for (const YAML::Node& e : d["verdict"]["estimates"])
+    if (e["effect"].as<std::string>() == effect) return e["value"].as<std::vector<double>>();
+  return {};
+}
+
+TEST(DiagnoseRealVehicle, AHiddenLeverArmAndTheImuLatencyAreAddedNearTheirTruthAndTheErrorFalls) {
+  const VehicleRun v = diagnose_vehicle("lever", {"lever_arm=0.5,-0.3,-1.2"}, 3);
+  const YAML::Node& d = v.diagnosis;
+  ASSERT_TRUE(d["imu_noise"]["applied"].as<bool>());
+  const double latency_s = v.sim.realism.imu_latency_s;
+  ASSERT_GT(latency_s, 0.03) << "the case needs a latency the turns can show";
+
+  const std::vector<double> lever = estimate_of(d, "lever_arm"), offset = estimate_of(d, "time_offset");
+  ASSERT_EQ(lever.size(), 3u) << "lever_arm not in the verdict";
+  ASSERT_EQ(offset.size(), 1u) << "time_offset not in the verdict";
+  EXPECT_NEAR(lever[0], 0.5, 0.1);
+  EXPECT_NEAR(lever[1], -0.3, 0.1);
+  EXPECT_NEAR(offset[0], -latency_s, 0.01);  // GNSS tag minus IMU tag: the IMU's lag, negative
+
+  // Horizontal: the lever arm's 0.58 m and the latency's 0.6-1.6 m along the track taken out (the rows on GPS
+  // time), all but what the vertical component's misfit and the heading leave.
+  const double before_m = d["truth"]["before"]["rms_horizontal_m"].as<double>();
+  const double after_m = d["truth"]["after"]["rms_horizontal_m"].as<double>();
+  EXPECT_LT(after_m, 0.5 * before_m) << "before " << before_m << " m";
+}
+
+TEST(DiagnoseRealVehicle, WithNothingHiddenTheInstalledNoiseIsMeasuredAndNothingIsAdded) {
+  const VehicleRun v = diagnose_vehicle("none", {}, 1);
+  const YAML::Node& d = v.diagnosis;
+  ASSERT_TRUE(d["imu_noise"]["applied"].as<bool>());
+  const double vibration_psd = std::pow(v.sim.realism.vibration_factor, 2);
+  EXPECT_NEAR(d["imu_noise"]["gyro_psd_scale"].as<double>() / vibration_psd, 1.0, 0.3);
+  EXPECT_NEAR(d["imu_noise"]["accel_psd_scale"].as<double>() / vibration_psd, 1.0, 0.3);
+  EXPECT_EQ(d["verdict"]["add"].size(), 0u) << d["verdict"]["config_snippet"].as<std::string>();
+}
+
+}  // namespace
+}  // namespace ldv
