@@ -121,6 +121,22 @@ void NavFilter::initialize(const NavState& s, const NavStd& std) {
   announce_restart();
 }
 
+void NavFilter::couple_start_to_gnss_effects() {
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(3, c_.P.cols());  // d(initial position error) / d(effect errors)
+  for (const auto& b : layout_.blocks()) {
+    if (b.effect->name() == "lever_arm") J.middleCols(b.offset, 3) = -c_.nav.C_b_n();
+    if (b.effect->name() == "time_offset") J.col(b.offset) = c_.nav.v_n_mps;
+  }
+  if (J.isZero()) return;
+  // P <- T P T^T with T = I + E, E's position rows J: the error moves into the position, the rest unchanged.
+  const Eigen::MatrixXd JP = J * c_.P;
+  c_.P.topRows(3) += JP;
+  c_.P.leftCols(3) += JP.transpose();
+  c_.P.topLeftCorner(3, 3) += JP * J.transpose();
+  last_good_ = c_;
+  if (!snapshots_.empty()) snapshots_.back() = c_;
+}
+
 void NavFilter::rebuild_error_model() {
   ImuErrorModel& m = c_.model;
   m.clear_imu_terms();

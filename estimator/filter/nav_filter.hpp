@@ -44,6 +44,12 @@ class NavFilter {
 
   // Starts the filter at `s` with this uncertainty; effect blocks start at their priors.
   void initialize(const NavState& s, const NavStd& std);
+  // After initialize, when the initial position came from a GNSS fix moved to the IMU by the lever arm's prior
+  // mean and carried over the time offset's: its error holds those priors' errors too (delta_r = delta_r_fix -
+  // C_b_n delta_l + v_n delta_time_offset), so the covariance gets them, correlated. Without it the start ties a
+  // lever arm estimated with a wide prior to that prior's mean: the vertical, seen otherwise only through roll
+  // and pitch, read -0.78 m for -1.2 (ldv diagnose, a vehicle from its datasheet config).
+  void couple_start_to_gnss_effects();
   bool initialized() const { return c_.initialized; }
   // Forgets the run: back to before initialize(), with the same options and observer (a redone alignment).
   void restart();

@@ -179,8 +179,10 @@ void Aligner::add_gnss(const GnssFix& fix) {
     sd.att_rad = Vec3(level_std_rad_.x() + 0.5 * kDegToRad, level_std_rad_.y() + 0.5 * kDegToRad, o_.cog_yaw_std_rad);
     method_ = "levelling + GNSS course over ground";
   }
-  // The fix is at the antenna: move to the IMU.
-  s.pos = earth::offset_ned(fix.pos, -(s.C_b_n() * o_.lever_arm_b_m));
+  // The fix is at the antenna: move to the IMU, and carried from the IMU time the fix was taken at to this sample's
+  // (a 60 ms IMU lag is 0.6 m along the track at 10 m/s).
+  const double taken_at_s = fix.t_s - o_.time_offset_s;
+  s.pos = earth::offset_ned(fix.pos, -(s.C_b_n() * o_.lever_arm_b_m) + s.v_n_mps * (s.t_s - taken_at_s));
   result_ = std::make_pair(s, sd);
 }
 

@@ -47,6 +47,7 @@ struct AlignmentOptions {
   // this (NavSession::run_heading_trial).
   double course_trial_max_s = 64.0;
   Vec3 lever_arm_b_m = Vec3::Zero();
+  double time_offset_s = 0.0;  // GNSS tag minus IMU tag: the fix labelled t was taken at IMU time t - time_offset
   // The GNSS has a say (off in KF-GINS-compatible runs, FilterOptions::robust_update):
   //  - standstill: an IMU vibrating in a car at rest (engine, 10x its datasheet noise) never looks static to
   //    a detector tuned to the datasheet; motion is taken from the IMU only once the GNSS shows it too (two

@@ -13,6 +13,7 @@ AlignmentOptions alignment_options_from(const FilterOptions& fo) {
   ao.vrw_mps_per_sqrt_s = fo.vrw_mps_per_sqrt_s.maxCoeff();
   ao.accel_bias_std_mps2 = fo.accel_bias.init_std.maxCoeff();
   ao.lever_arm_b_m = fo.lever_arm.init;
+  ao.time_offset_s = fo.time_offset_init_s;
   ao.speed_min_mps = fo.align_speed_mps;
   // Each hypothesis is a filter run side by side: more than one per degree is never useful and a huge
   // count exhausts memory (every path to the alignment passes here).

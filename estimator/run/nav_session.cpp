@@ -30,6 +30,16 @@ void insert_in_time_order(Queue& q, T item, double t_s) {
   q.insert(it, std::move(item));
 }
 
+// The aligned state turned about the down axis by dyaw, the IMU moved so that the antenna stays where the fix
+// put it (the alignment placed the IMU with the lever arm at the course heading; at a heading 180 deg from it a
+// 0.5 m lever arm is 1 m off).
+NavState turned_about_down(const NavState& aligned, double dyaw, const Vec3& lever_arm_b_m) {
+  NavState s = aligned;
+  s.q_b_n = (Quat(Eigen::AngleAxisd(dyaw, Vec3::UnitZ())) * aligned.q_b_n).normalized();
+  s.pos = earth::offset_ned(aligned.pos, (aligned.C_b_n() - s.C_b_n()) * lever_arm_b_m);
+  return s;
+}
+
 }  // namespace
 
 NavSession::NavSession(SessionOptions options, NavFilter& filter, EpochSink on_epoch)
@@ -86,7 +96,7 @@ void NavSession::add_imu(const ImuIncrement& raw, int week, double arrival_s) {
     NavState s = o_.given_start->first;
     // The given state holds at the start of the first increment (KF-GINS: at starttime).
     s.t_s = std::max(o_.start_time_s, imu.t_s - imu.dt_s);
-    start(s, o_.given_start->second, "given", std::nullopt);
+    start(s, o_.given_start->second, "given", std::nullopt, false);
     navigate(imu, week);
     return;
   }
@@ -167,7 +177,7 @@ void NavSession::decide_late_given_start(double now_s, bool at_end) {
   }
   NavState s = given;
   s.t_s = t0 - imu_queue_.front().imu.dt_s;
-  start(s, given_std, "given", std::nullopt);
+  start(s, given_std, "given", std::nullopt, false);
   release_backlog();
 }
 
@@ -352,7 +362,7 @@ void NavSession::aligned(Alignment al) {
     trial_window_s_ = o_.alignment.course_trial_s;
     return;
   }
-  start(al.state, al.std, al.method, al.gyro_bias_seed);
+  start(al.state, al.std, al.method, al.gyro_bias_seed, true);
 }
 
 bool NavSession::heading_trial_ready(double now_s, bool at_end) const {
@@ -397,8 +407,7 @@ void NavSession::run_heading_trial(bool at_end) {
     // headings 90-135 deg off.
     for (const char* held : {"lever_arm", "time_offset", "gnss_position_bias"}) trial_options.drop.emplace_back(held);
     NavFilter trial(trial_options);
-    NavState s = al.state;
-    s.q_b_n = (Quat(Eigen::AngleAxisd(dyaw, Vec3::UnitZ())) * al.state.q_b_n).normalized();
+    const NavState s = turned_about_down(al.state, dyaw, trial_options.lever_arm.init);
     NavStd sd = al.std;
     sd.att_rad.z() = std::max(al.std.att_rad.z(), 0.5 * step);
     trial.initialize(s, sd);
@@ -435,12 +444,12 @@ void NavSession::run_heading_trial(bool at_end) {
       return;
     }
   }
-  al.state.q_b_n = (Quat(Eigen::AngleAxisd(best_dyaw, Vec3::UnitZ())) * al.state.q_b_n).normalized();
+  al.state = turned_about_down(al.state, best_dyaw, filter_.options().lever_arm.init);
   al.std.att_rad.z() = std::max(al.std.att_rad.z(), 0.5 * step);
   al.method += " (best of " + std::to_string(n) + " body headings" + (misfit ? " by the accelerations" : "") +
                " over " + fixed_text(trial_window_s_) + " s: x axis " +
                std::to_string(static_cast<int>(std::lround(best_dyaw * kRadToDeg))) + " deg from the course)";
-  start(al.state, al.std, al.method, al.gyro_bias_seed);
+  start(al.state, al.std, al.method, al.gyro_bias_seed, true);
 }
 
 std::optional<double> NavSession::window_heading_misfit(const Alignment& al, double t_window_end) const {
@@ -477,7 +486,8 @@ bool NavSession::try_warm_start(const ImuIncrement& imu) {
   }
   // Antenna fix -> IMU centre, then carried to the start of this sample with the velocity.
   const Vec3 lever_n = s.C_b_n() * filter_.options().lever_arm.init;
-  s.pos = earth::offset_ned(fix.pos, -lever_n + v_n * (s.t_s - fix.t_s));
+  const double taken_at_s = fix.t_s - filter_.options().time_offset_init_s;  // on the IMU's clock
+  s.pos = earth::offset_ned(fix.pos, -lever_n + v_n * (s.t_s - taken_at_s));
   s.v_n_mps = v_n;
   NavStd sd;
   sd.pos_ned_m = 2.0 * fix.pos_std_ned_m + Vec3::Constant(0.05);
@@ -487,13 +497,14 @@ bool NavSession::try_warm_start(const ImuIncrement& imu) {
   sd.att_rad = saved_std.att_rad + Vec3(0.5, 0.5, 5.0) * kDegToRad;
   if (course_turned) sd.att_rad.z() = saved_std.att_rad.z() + o_.alignment.cog_yaw_std_rad;
   const Vec3& bias = warm_gyro_bias_rad_s_;
-  start(s, sd, "warm start", bias.isZero() ? std::nullopt : std::optional<Vec3>(bias));
+  start(s, sd, "warm start", bias.isZero() ? std::nullopt : std::optional<Vec3>(bias), true);
   return true;
 }
 
 void NavSession::start(const NavState& s, const NavStd& sd, const std::string& how,
-                       const std::optional<Vec3>& gyro_bias_seed) {
+                       const std::optional<Vec3>& gyro_bias_seed, bool position_from_fix) {
   filter_.initialize(s, sd);
+  if (position_from_fix) filter_.couple_start_to_gnss_effects();
   // A turn-on bias the alignment's static start showed (or a warm start's saved gyro bias) is taken out of every
   // increment.
   if (gyro_bias_seed) {

@@ -139,7 +139,9 @@ class NavSession {
   void keep_pre_start(const ImuIncrement& imu);
   // The floor (and a white noise configured as 0) from a standstill before the alignment, once.
   void measure_noise_before_start();
-  void start(const NavState& s, const NavStd& sd, const std::string& how, const std::optional<Vec3>& gyro_bias_seed);
+  // position_from_fix: the position is a GNSS fix's moved to the IMU (aligned, warm start), not a given one.
+  void start(const NavState& s, const NavStd& sd, const std::string& how, const std::optional<Vec3>& gyro_bias_seed,
+             bool position_from_fix);
   void release_backlog();
   void navigate(const ImuIncrement& imu, int week);
   void hand_over_readings(double up_to_s);

@@ -121,7 +121,9 @@ TEST(ImuLatencyLeverArm, AForwardLeverArmIsNotTakenForALag) {
     EXPECT_LT(std::abs(e.lag_s - lag_s), 3.0 * e.sigma_s + 0.6 / e.median_speed_mps)
         << "lag " << lag_s << ": " << e.lag_s << " +- " << e.sigma_s;
     EXPECT_EQ(e.significant(), lag_s > e.lever_arm_equivalent_lag_s()) << e.lag_s << " +- " << e.sigma_s;
-    if (lag_s == 0.0) EXPECT_FALSE(e.significant());
+    if (lag_s == 0.0) {
+      EXPECT_FALSE(e.significant());
+    }
   }
 }
 
