@@ -403,7 +403,7 @@ void NavSession::run_heading_trial(bool at_end) {
     FilterOptions trial_options = filter_.options();
     trial_options.adapt_imu_noise = false;
     // The GNSS-side effects held at their prior means: estimated with a wide prior (a diagnosis's candidate
-    // lever arm: 0.6 m), they move the predicted fix after a wrong heading's misfit, and the trial chose
+    // lever arm: 0.6 m), they move the predicted fix to follow a wrong heading's misfit, and the trial chose
     // headings 90-135 deg off.
     for (const char* held : {"lever_arm", "time_offset", "gnss_position_bias"}) trial_options.drop.emplace_back(held);
     NavFilter trial(trial_options);
