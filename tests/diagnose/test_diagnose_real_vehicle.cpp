@@ -15,25 +15,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "sim/simulator.hpp"
+#include "tests/hardening/cli_run.hpp"
 
 namespace ldv {
 namespace {
 namespace fs = std::filesystem;
-
-void run(const std::string& args, const fs::path& log) {
-  const std::string cmd = std::string(LDV_BIN_DIR) + "/ldv " + args + " > " + log.string() + " 2>&1";
-  const int rc = std::system(cmd.c_str());
-  std::ifstream f(log);
-  std::stringstream s;
-  s << f.rdbuf();
-  ASSERT_EQ(rc, 0) << cmd << "\n" << s.str();
-}
 
 struct VehicleRun {
   YAML::Node diagnosis;  // the JSON (JSON is YAML)
@@ -52,10 +41,10 @@ VehicleRun diagnose_vehicle(const std::string& name, const std::vector<std::stri
   VehicleRun v{YAML::Node(), sim::simulate(req)};
   sim::write_outputs(v.sim, dir.string());
   const fs::path json = dir / "diagnosis.json";
-  run("diagnose --kfgins-config " + (dir / "datasheet.yaml").string() + " --truth " + (dir / "truth.nav").string() +
-          " --json " + json.string() + " --quiet",
-      dir / "diagnose.log");
-  v.diagnosis = YAML::LoadFile(json.string());
+  const test::CliResult r = test::run_ldv({"diagnose", "--kfgins-config", (dir / "datasheet.yaml").string(), "--truth",
+                                           (dir / "truth.nav").string(), "--json", json.string(), "--quiet"});
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  if (r.exit_code == 0) v.diagnosis = YAML::LoadFile(json.string());
   fs::remove_all(dir.parent_path());
   return v;
 }
