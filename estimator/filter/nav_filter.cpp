@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string_view>
 #include <vector>
 
 #include "common/geo/earth_model.hpp"
@@ -16,6 +17,8 @@
 namespace ldv::est {
 namespace {
 constexpr double kSnapshotPeriod_s = 0.2;
+// History kept for retracting an edge fix: one GNSS interval back at 1 Hz, with room for the snapshot period.
+constexpr double kRetractHistory_s = 2.5;
 constexpr double kHealthPeriod_s = 1.0;
 // A re-synchronisation opens the heading by at most this: beyond, the session's heading check aligns again
 // (SessionOptions::heading_failed_rad, 30 deg).
@@ -117,15 +120,16 @@ void NavFilter::initialize(const NavState& s, const NavStd& std) {
   pending_.clear();
   snapshots_.clear();
   imu_history_.clear();
-  if (opt_.history_s > 0.0) snapshots_.push_back(c_);  // a fix at the initial epoch may still arrive late
+  if (kept_history_s() > 0.0) snapshots_.push_back(c_);  // a fix at the initial epoch may still arrive late
   announce_restart();
 }
 
 void NavFilter::couple_start_to_gnss_effects() {
   Eigen::MatrixXd J = Eigen::MatrixXd::Zero(3, c_.P.cols());  // d(initial position error) / d(effect errors)
   for (const auto& b : layout_.blocks()) {
-    if (b.effect->name() == "lever_arm") J.middleCols(b.offset, 3) = -c_.nav.C_b_n();
-    if (b.effect->name() == "time_offset") J.col(b.offset) = c_.nav.v_n_mps;
+    const std::string_view name = b.effect->name();  // compared as text: a const char* == compares addresses
+    if (name == "lever_arm") J.middleCols(b.offset, 3) = -c_.nav.C_b_n();
+    if (name == "time_offset") J.col(b.offset) = c_.nav.v_n_mps;
   }
   if (J.isZero()) return;
   // P <- T P T^T with T = I + E, E's position rows J: the error moves into the position, the rest unchanged.
@@ -159,20 +163,27 @@ void NavFilter::add_imu(const ImuIncrement& input) {
     ++faults_.imu_rejected;
     return;
   }
-  c_.status &= ~(kStatusImuRejected | kStatusImuGap | kStatusCovarianceReset | kStatusStateReset |
-                 kStatusLateDropped | kStatusMeasurementRejected);
+  c_.status &= ~(kStatusImuRejected | kStatusImuGap | kStatusCovarianceReset | kStatusStateReset | kStatusLateDropped |
+                 kStatusMeasurementRejected);
   if (!c_.initialized) return;
-  if (opt_.history_s > 0.0) {
+  if (kept_history_s() > 0.0) {
     imu_history_.push_back(raw);
-    while (!imu_history_.empty() && imu_history_.front().t_s < raw.t_s - opt_.history_s) imu_history_.pop_front();
+    while (!imu_history_.empty() && imu_history_.front().t_s < raw.t_s - kept_history_s()) imu_history_.pop_front();
   }
   process_imu(raw);
-  if (opt_.history_s > 0.0) take_snapshot();
+  if (kept_history_s() > 0.0) take_snapshot();
+  settle_suspect_fix();
+}
+
+double NavFilter::kept_history_s() const {
+  // The robust update keeps a few seconds even offline (history_s 0: no fix is late there), so that a fix taken
+  // in at the gate's edge can be undone when the next one shows it was the outlier (retract_suspect_fix).
+  return opt_.robust_update ? std::max(opt_.history_s, kRetractHistory_s) : opt_.history_s;
 }
 
 void NavFilter::take_snapshot() {
   if (snapshots_.empty() || c_.nav.t_s - snapshots_.back().nav.t_s >= kSnapshotPeriod_s) snapshots_.push_back(c_);
-  while (snapshots_.size() > 1 && snapshots_[1].nav.t_s < c_.nav.t_s - opt_.history_s) snapshots_.pop_front();
+  while (snapshots_.size() > 1 && snapshots_[1].nav.t_s < c_.nav.t_s - kept_history_s()) snapshots_.pop_front();
 }
 
 void NavFilter::coast_over_imu_gap(double hole_start_s, double t_end_s) {
@@ -463,6 +474,7 @@ void NavFilter::add_observation(ObservationPtr obs) {
     return;
   }
   rewind_and_apply(e);
+  settle_suspect_fix();
 }
 
 void NavFilter::drop_queued_gnss_after(double t_s) {
@@ -481,12 +493,17 @@ void NavFilter::rewind_and_apply(const Event& event) {
   const double t_apply = event.t_s() - c_.model.time_offset_s;
   int k = static_cast<int>(snapshots_.size()) - 1;
   while (k >= 0 && snapshots_[k].nav.t_s > t_apply + kSplitTolerance_s) --k;
-  if (k < 0 || opt_.history_s <= 0.0) {
+  if (k < 0 || opt_.history_s <= 0.0 || t_apply < c_.nav.t_s - opt_.history_s - kSplitTolerance_s) {
     c_.status |= kStatusLateDropped;
     ++faults_.late_dropped;
     return;
   }
-  // Readings applied now but not contained in the snapshot are applied again, in order, with the late one.
+  enqueue(event);  // applied at its epoch in the replay, with the readings applied since the snapshot
+  replay_from_snapshot(k, -1);
+}
+
+void NavFilter::replay_from_snapshot(int k, long excluded_id) {
+  // Readings applied now but not contained in the snapshot are applied again, in order.
   const std::deque<Event> applied_now = c_.applied;
   c_ = snapshots_[k];
   announce_restart();  // an observer's records after the snapshot no longer hold
@@ -494,17 +511,62 @@ void NavFilter::rewind_and_apply(const Event& event) {
   for (const Event& a : applied_now) {
     const bool in_snapshot =
         std::any_of(c_.applied.begin(), c_.applied.end(), [&](const Event& b) { return b.id == a.id; });
-    if (!in_snapshot) enqueue(a);
+    if (!in_snapshot && a.id != excluded_id) enqueue(a);
   }
-  enqueue(event);
   const double t_snap = c_.nav.t_s;
+  const bool was_replaying = replaying_;
   replaying_ = true;
   for (const ImuIncrement& raw : imu_history_)
     if (raw.t_s > t_snap + 1e-9) {
       process_imu(raw);
       take_snapshot();
     }
-  replaying_ = false;
+  replaying_ = was_replaying;
+}
+
+void NavFilter::settle_suspect_fix() {
+  if (suspect_to_settle_ < 0 || trying_branch_) return;
+  const long suspect = suspect_to_settle_, rejected = rejected_after_suspect_;
+  suspect_to_settle_ = rejected_after_suspect_ = -1;
+  if (retract_suspect_fix(suspect, rejected)) ++faults_.fixes_retracted;
+}
+
+bool NavFilter::retract_suspect_fix(long suspect_id, long rejected_id) {
+  // A GNSS fix taken in at the edge of the gate (NIS above its 99 % quantile) and the next one rejected: either
+  // the state has left the fixes (the ones after will confirm it and re-synchronise), or the edge fix was an
+  // outlier that moved the state (a MEMS IMU's tilt, wide after a rejected fix, took a 1.2 m jump as 2.4 deg of
+  // pitch, and drifted 6 m before the re-synchronisation). Try the state without it: if the rejected fix fits
+  // there (NIS within the 99 % quantile, not just the gate), the edge fix was the outlier; keep that branch.
+  int k = static_cast<int>(snapshots_.size()) - 1;
+  const auto holds_suspect = [&](const Core& snap) {
+    return std::any_of(snap.applied.begin(), snap.applied.end(), [&](const Event& e) { return e.id == suspect_id; });
+  };
+  while (k >= 0 && holds_suspect(snapshots_[k])) --k;
+  const bool suspect_applied =
+      std::any_of(c_.applied.begin(), c_.applied.end(), [&](const Event& e) { return e.id == suspect_id; });
+  if (k < 0 || !suspect_applied) return false;  // beyond the history kept
+  // The trial, on a copy of everything a replay changes, with no observer and no records kept.
+  const Core saved = c_, saved_last_good = last_good_;
+  const std::deque<Core> saved_snapshots = snapshots_;
+  const std::deque<Event> saved_pending = pending_;
+  const FaultCounters saved_faults = faults_;
+  const size_t saved_records = innovations_.size();
+  FilterObserver* const observer = observer_.p;
+  observer_.p = nullptr;
+  trying_branch_ = true;
+  rejected_after_suspect_ = rejected_id;
+  trial_fits_ = false;
+  replay_from_snapshot(k, suspect_id);
+  const bool fits_without = trial_fits_;
+  trying_branch_ = false;
+  rejected_after_suspect_ = -1;
+  c_ = saved, last_good_ = saved_last_good, snapshots_ = saved_snapshots, pending_ = saved_pending;
+  faults_ = saved_faults;
+  innovations_.resize(saved_records);
+  observer_.p = observer;
+  if (!fits_without) return false;
+  replay_from_snapshot(k, suspect_id);  // for real: the observer sees the restart and the replay
+  return true;
 }
 
 void NavFilter::apply_next_pending() {
@@ -515,10 +577,11 @@ void NavFilter::apply_next_pending() {
 }
 
 void NavFilter::apply_event(const Event& e) {
+  applying_event_id_ = e.id;
   Event applied = e;
   applied.t_apply_s = c_.nav.t_s;
   c_.applied.push_back(applied);
-  while (!c_.applied.empty() && c_.applied.front().t_apply_s < c_.nav.t_s - opt_.history_s) c_.applied.pop_front();
+  while (!c_.applied.empty() && c_.applied.front().t_apply_s < c_.nav.t_s - kept_history_s()) c_.applied.pop_front();
   const int n = e.obs->measurement_count(opt_);
   for (int i = 0; i < n; ++i) {
     const LinearizationPoint lp = linearization_point();
@@ -598,6 +661,7 @@ void NavFilter::apply_measurement(const Measurement& m) {
   // Used: within the gate, forced, or kept by the robust update with at least a quarter of its weight.
   const bool used = rec.used();
   if (ok && beyond_gate) ++faults_.downweighted;
+  if (m.sensor == sensors::kGnssPosition && opt_.robust_update) note_gnss_position_outcome(rec, force, beyond_gate);
   if (used && m.gnss) {
     c_.last_gnss_t_s = c_.nav.t_s;
     c_.v_n_at_last_gnss_mps = c_.nav.v_n_mps;
@@ -618,6 +682,18 @@ void NavFilter::apply_measurement(const Measurement& m) {
   innovations_.push_back(rec);
   if (want) observer_.p->on_update(rec, m.H, K_);
   check_health(false);
+}
+
+void NavFilter::note_gnss_position_outcome(const InnovationRecord& rec, bool forced, bool beyond_gate) {
+  const bool at_edge =
+      rec.nis > math::chi_square_quantile(kGateEdgeProbability, static_cast<int>(rec.innovation.size()));
+  if (trying_branch_) {
+    if (applying_event_id_ == rejected_after_suspect_) trial_fits_ = !beyond_gate && !at_edge;
+    return;
+  }
+  if (beyond_gate && c_.gnss_suspect_id >= 0)
+    suspect_to_settle_ = c_.gnss_suspect_id, rejected_after_suspect_ = applying_event_id_;
+  c_.gnss_suspect_id = (!forced && !beyond_gate && at_edge) ? applying_event_id_ : -1;
 }
 
 void NavFilter::adapt_imu_noise(const InnovationRecord& rec) {

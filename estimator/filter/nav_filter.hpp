@@ -154,6 +154,9 @@ class NavFilter {
     double standstill_f_scatter_mps2 = 0.0;  // set_standstill_f_scatter
     double imu_noise_scale = 1.0;
     std::deque<Event> applied;  // readings applied within the history horizon (what a snapshot contains)
+    // The last GNSS position fix, if it was taken in at the edge of the gate (NIS above the 99 % quantile): the
+    // one to try without when the next fix is rejected (retract_suspect_fix). -1: none.
+    long gnss_suspect_id = -1;
   };
 
   void process_imu(const ImuIncrement& raw);
@@ -177,7 +180,16 @@ class NavFilter {
   void reset_covariance();
   void announce_restart();  // to the observer: the covariance does not follow from the one before
   void take_snapshot();
+  double kept_history_s() const;  // snapshots and IMU history: history_s, or longer for retract_suspect_fix
   void rewind_and_apply(const Event& event);
+  // Restores snapshot k and re-processes the IMU history after it, with the readings applied since except the one
+  // with id `excluded_id`.
+  void replay_from_snapshot(int k, long excluded_id);
+  // The fix after one taken in at the edge of the gate was rejected: keep the branch without the edge fix if the
+  // rejected one fits there (retract_suspect_fix). Called where no reading is being applied.
+  void settle_suspect_fix();
+  bool retract_suspect_fix(long suspect_id, long rejected_id);
+  void note_gnss_position_outcome(const InnovationRecord& rec, bool forced, bool beyond_gate);
 
   FilterOptions opt_;
   StateLayout layout_;
@@ -196,6 +208,13 @@ class NavFilter {
   std::deque<ImuIncrement> imu_history_;
   std::deque<Core> snapshots_;
   bool replaying_ = false;
+  long applying_event_id_ = -1;  // the reading apply_event is applying
+  // A GNSS position fix rejected right after an edge fix: {edge fix, rejected fix} ids, -1: none.
+  long suspect_to_settle_ = -1, rejected_after_suspect_ = -1;
+  bool trying_branch_ = false;  // inside retract_suspect_fix's trial
+  bool trial_fits_ = false;     // the rejected fix, in the trial branch: within the gate's edge
+  // A fix whose NIS is above this quantile (of its dof) is at the gate's edge.
+  static constexpr double kGateEdgeProbability = 0.99;
 
   FaultCounters faults_;
   std::vector<InnovationRecord> innovations_;

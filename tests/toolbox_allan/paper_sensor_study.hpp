@@ -280,6 +280,88 @@ inline void expect_paper_criteria(const PaperStudy& s, const std::vector<AxisTal
   }
 }
 
+// The issue's per-term bars at 20 seeds, judged as what they can tell. "Inside the 95 % interval in 90 % of
+// seeds" is missed by a calibrated interval in 7.5 % of tallies of 20 (17 of 20 or fewer), and a study judges
+// about 200: some 16 miss it by chance alone, so a test that asserts the bar tally by tally fails on a perfect
+// estimator. A tally fails here when it misses the bar by more than chance: under 90 % of seeds, and a count a
+// calibrated interval reaches in fewer than kTallyTailMin of sets (14 of 20 or fewer; under 0.1 such tallies
+// expected over the study). Within tolerance (where the record's bound allows it) likewise: under 90 %, and a count
+// an efficient unbiased estimator (normal, relative sigma the Cramer-Rao bound) reaches in fewer than
+// kTallyTailMin of sets. Never stricter than the bar: a tally at 90 % or more passes. Calibration proper is the
+// pooled test below, where a few hundred intervals give it power. Terms the paper did not identify: a call is a
+// false alarm of a significance test, so the study's calls must not exceed what a two-sided 3-sigma test makes
+// (0.27 % of records) by more than kTallyTailMin's chance; each call is printed. Every tally under the bar is
+// printed with its tail, and their count against the number a calibrated interval expects.
+constexpr double kTallyTailMin = 0.001;
+constexpr double kAbsentFalseAlarm = 0.0027;
+
+inline double efficient_within_share(double tolerance_rel, double bound_rel) {
+  return std::erf(tolerance_rel / (bound_rel * std::sqrt(2.0)));
+}
+
+// P(X >= k), X ~ Binomial(n, p).
+inline double binomial_upper_tail(int k, int n, double p) {
+  return k <= 0 ? 1.0 : 1.0 - binomial_lower_tail(k - 1, n, p);
+}
+
+inline void expect_paper_criteria_tested(const PaperStudy& s, const std::vector<AxisTally>& axes, const char* label) {
+  int under_bar = 0, tallies = 0, absent_calls = 0, absent_records = 0;
+  double expected_under_bar = 0.0;
+  for (const AxisTally& a : axes) {
+    for (int i = 0; i < static_cast<int>(PaperTerm::kCount); ++i) {
+      const auto t = static_cast<PaperTerm>(i);
+      const TermTally& tt = a[t];
+      const std::string what = s.grade + " " + label + " " + a.truth.channel + " " + term_name(t);
+      if (a.truth[t] <= 0) {
+        absent_calls += tt.resolved_absent, absent_records += tt.absent_judged;
+        if (tt.resolved_absent > 0)
+          std::printf("%s: absent in the paper's table, reported resolved in %d of %d seeds\n", what.c_str(),
+                      tt.resolved_absent, tt.absent_judged);
+        continue;
+      }
+      if (tt.judged == 0) continue;  // the flat B was chosen every time: no GM to judge
+      const int bar = static_cast<int>(std::ceil(0.9 * tt.judged - 1e-9));
+      ++tallies;
+      expected_under_bar += binomial_lower_tail(bar - 1, tt.judged, 0.95);
+      const double covered_tail = binomial_lower_tail(tt.covered, tt.judged, 0.95);
+      if (tt.covered < bar) {
+        ++under_bar;
+        std::printf(
+            "%s: under the 90 %% bar, truth inside the 95 %% interval in %d of %d (a calibrated interval "
+            "does this or worse in %.1f %% of sets)\n",
+            what.c_str(), tt.covered, tt.judged, 100 * covered_tail);
+        EXPECT_GE(covered_tail, kTallyTailMin) << what << ": truth inside the 95 % interval in only " << tt.covered
+                                               << " of " << tt.judged << ": the interval is too narrow";
+      }
+      if (!reachable(tt, t)) {
+        std::printf("%s: beyond the record (bound %.1f %% x 1.645 > %.0f %%): within in %d of %d, RMS %.1f %%\n",
+                    what.c_str(), 100 * tt.precision(), 100 * tolerance(t), tt.within, tt.judged, 100 * tt.rms());
+        continue;
+      }
+      if (tt.within >= bar) continue;
+      const double share = efficient_within_share(tolerance(t), tt.precision());
+      const double within_tail = binomial_lower_tail(tt.within, tt.judged, share);
+      std::printf(
+          "%s: under the 90 %% bar, within %.0f %% in %d of %d (RMS %.1f %%, bound %.1f %%: an efficient "
+          "estimator is within in %.1f %% of seeds, and does this or worse in %.1f %% of sets)\n",
+          what.c_str(), 100 * tolerance(t), tt.within, tt.judged, 100 * tt.rms(), 100 * tt.precision(), 100 * share,
+          100 * within_tail);
+      EXPECT_GE(within_tail, kTallyTailMin)
+          << what << ": within " << 100 * tolerance(t) << " % in only " << tt.within << " of " << tt.judged << " (RMS "
+          << 100 * tt.rms() << " %, bound " << 100 * tt.precision() << " %)";
+    }
+  }
+  std::printf("%s %s: %d of %d interval tallies under the 90 %% bar; a calibrated interval expects %.1f\n",
+              s.grade.c_str(), label, under_bar, tallies, expected_under_bar);
+  const double absent_tail = binomial_upper_tail(absent_calls, absent_records, kAbsentFalseAlarm);
+  std::printf(
+      "%s %s: absent terms reported resolved in %d of %d records (a 3-sigma test calls %.2f; this many or "
+      "more in %.1f %% of studies)\n",
+      s.grade.c_str(), label, absent_calls, absent_records, kAbsentFalseAlarm * absent_records, 100 * absent_tail);
+  EXPECT_GE(absent_tail, kTallyTailMin) << s.grade << " " << label << ": absent terms called resolved " << absent_calls
+                                        << " times in " << absent_records << " records";
+}
+
 // The pooled coverage (kPooledCoverageMin/Max) of one analysis of a study.
 inline void expect_pooled_coverage_calibrated(const PaperStudy& s, const std::vector<AxisTally>& axes,
                                               const char* label) {

@@ -2,9 +2,11 @@
 // of the paper's sensors (Tables 4-9 as the built-in grades), 16 h at 100 Hz for the HG1700 and HG1900, 5 h at
 // 20 Hz for the 3DM-GX2 (both readings of its gyro Q). `ldv allan`'s default analysis (bias model by AIC) and
 // the paper's forced Gauss-Markov, each judged by the criteria: Q and N within 3 %, GM sigma and T
-// within 20 %, K and R within 30 %, in 90 % of seeds where the record's Cramer-Rao bound allows it (else
-// printed), the truth inside the 95 % interval in 90 % of seeds, terms the paper did not identify never
-// resolved; and all intervals of an analysis pooled inside in 92-99 % (calibrated). The short version:
+// within 20 %, K and R within 30 % where the record's Cramer-Rao bound allows it (else printed), the truth inside
+// the 95 % interval, terms the paper did not identify never resolved; and all intervals of an analysis pooled
+// inside in 92-99 % (calibrated). The "90 % of seeds" of each tally is judged as a test at 20 seeds
+// (expect_paper_criteria_tested: a calibrated interval misses that bar in some 16 of 200 tallies by chance);
+// each tally under it is printed with its binomial tail. The short version:
 // test_paper_sensors.cpp. Another set of seeds: LDV_PAPER_STUDY_SEEDS=FIRST:COUNT (e.g. 21:40, the 40 more seeds
 // of docs/paper_allan_montecarlo.md, "This check").
 #include <cstdlib>
@@ -41,8 +43,8 @@ void judge_paper_study(const std::string& grade, double hours, double rate_hz) {
   const PaperStudy s = run_paper_study(grade, hours, rate_hz, seeds->count, seeds->first);
   print_study(s, "default (bias model by AIC)", s.by_default);
   print_study(s, "--gauss-markov", s.gauss_markov);
-  expect_paper_criteria(s, s.by_default, "default", 0.9);
-  expect_paper_criteria(s, s.gauss_markov, "--gauss-markov", 0.9);
+  expect_paper_criteria_tested(s, s.by_default, "default");
+  expect_paper_criteria_tested(s, s.gauss_markov, "--gauss-markov");
   expect_pooled_coverage_calibrated(s, s.by_default, "default");
   expect_pooled_coverage_calibrated(s, s.gauss_markov, "--gauss-markov");
 }

@@ -61,13 +61,23 @@ void SensitivityObserver::on_imu_epoch() {
   }
 }
 
-void SensitivityObserver::on_propagation(double, double, const Eigen::MatrixXd& Phi, const Eigen::MatrixXd&) {
+void SensitivityObserver::on_propagation(double t_s, double, const Eigen::MatrixXd& Phi, const Eigen::MatrixXd&) {
   Psi_ = Phi * Psi_;
   // Gamma was accumulated along the step: half a step of the navigation error dynamics acts on it
   // (the filter's Phi_ne = B + A B / 2 with A ~ Phi_nn - I).
   const Eigen::Matrix<double, 9, 9> half = 0.5 * (Phi.topLeftCorner<9, 9>() + Eigen::Matrix<double, 9, 9>::Identity());
   Psi_.topRows<9>() += half * Gamma_;
   Gamma_.setZero();
+  constexpr double kKeep_s = 4.0;  // beyond the filter's retraction history (2.5 s) and late-fix horizon (3 s)
+  std::erase_if(kept_, [&](const Kept& k) { return k.t_s < t_s - kKeep_s; });
+  kept_.push_back({t_s, Psi_, Gamma_});
+}
+
+void SensitivityObserver::on_restart(double t_s, const Eigen::MatrixXd&) {
+  std::erase_if(records_, [&](const SensitivityRecord& r) { return r.t_s > t_s + 1e-9; });
+  while (!kept_.empty() && kept_.back().t_s > t_s + 1e-9) kept_.pop_back();
+  if (!kept_.empty()) Psi_ = kept_.back().Psi, Gamma_ = kept_.back().Gamma;
+  last_t_s_ = std::min(last_t_s_, t_s);
 }
 
 void SensitivityObserver::on_update(const est::InnovationRecord& r, const Eigen::MatrixXd& H,

@@ -37,6 +37,9 @@ class SensitivityObserver final : public est::FilterObserver {
   bool wants_matrices() const override { return true; }
   void on_propagation(double t_s, double dt_s, const Eigen::MatrixXd& Phi, const Eigen::MatrixXd& Qd) override;
   void on_update(const est::InnovationRecord& r, const Eigen::MatrixXd& H, const Eigen::MatrixXd& K) override;
+  // The filter goes back to t_s (an edge fix undone, a late fix): the records after it are void and the
+  // sensitivities are taken back to what they were then (kept for a few seconds); further back, they go on.
+  void on_restart(double t_s, const Eigen::MatrixXd& P) override;
   // Call after every IMU sample (RunCallbacks::on_epoch): accumulates Gamma at the filter's own
   // compensated rate, specific force and attitude.
   void on_imu_epoch();
@@ -51,6 +54,12 @@ class SensitivityObserver final : public est::FilterObserver {
   est::Mat3X J_gyro_, J_accel_;
   double last_t_s_ = -1.0;
   std::vector<SensitivityRecord> records_;
+  struct Kept {
+    double t_s;
+    Eigen::MatrixXd Psi;
+    Eigen::Matrix<double, 9, Eigen::Dynamic> Gamma;
+  };
+  std::vector<Kept> kept_;  // Psi after each propagation of the last seconds, for on_restart
 };
 
 }  // namespace ldv::diag

@@ -76,12 +76,13 @@ void print_summary(const char* what, long imu_samples, double t0, double t1, lon
   const auto& ft = f.faults();
   std::fprintf(stderr,
                "ldv nav: %s: %ld IMU samples from %.3f to %.3f s, %ld GNSS fixes; initial state: %s\n"
-               "  gate rejections %ld (resyncs %ld), covariance resets %ld, state resets %ld, IMU samples rejected %ld,"
+               "  gate rejections %ld (resyncs %ld, edge fixes retracted %ld), covariance resets %ld, state resets "
+               "%ld, IMU samples rejected %ld,"
                " gaps %ld; ZUPTs %ld (%ld skipped: moving off); final status %s\n  %.3f s (%.0f IMU samples/s) -> %s\n",
-               what, imu_samples, t0, t1, fixes, init.c_str(), ft.gate_rejections, ft.gate_resyncs,
-               ft.covariance_resets, ft.state_resets, ft.imu_rejected, ft.imu_gaps, ft.zupts_applied, ft.zupts_skipped_moving,
-               est::describe_status(f.status()).c_str(), elapsed, imu_samples / std::max(elapsed, 1e-9),
-               nav_path.c_str());
+               what, imu_samples, t0, t1, fixes, init.c_str(), ft.gate_rejections, ft.gate_resyncs, ft.fixes_retracted,
+               ft.covariance_resets, ft.state_resets, ft.imu_rejected, ft.imu_gaps, ft.zupts_applied,
+               ft.zupts_skipped_moving, est::describe_status(f.status()).c_str(), elapsed,
+               imu_samples / std::max(elapsed, 1e-9), nav_path.c_str());
   if (f.options().adapt_imu_noise) {
     const est::ImuNoiseScale run = f.imu_noise_psd_scale(), floor = f.imu_noise_floor();
     char measured[96];
