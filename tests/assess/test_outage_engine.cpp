@@ -131,3 +131,24 @@ TEST(OutageEngine, SmoothedGapsTieBothEndsAndAreReportedInTableAndJson) {
   std::fclose(f);
   EXPECT_NE(std::string(buf, n).find("Smoothed (forward + RTS backward"), std::string::npos);
 }
+
+TEST(OutageEngine, AgainstTheTruthTheDriftIsTakenAtGpsTimeWhenTheModelHasATimeOffset) {
+  // The IMU's tags 0.1 s behind GPS time (perfect sensors otherwise) and the model knowing it (time_offset at
+  // its value): the filter's epoch t is GPS time t + 0.1 s, where the truth is. Compared at the IMU epoch, a
+  // drive at 10 m/s read a drift of v x 0.1 s = 1 m that the filter does not have.
+  const auto& s = test::sim_drive("perfect", 500.0, "drive", {"time_offset=0.1"}, false);
+  est::FilterOptions fo = est::options_from_kfgins(s.kfgins);
+  fo.add = {"time_offset"};
+  fo.time_offset_init_s = 0.1;
+  OutageRunOptions o;
+  o.lengths_s = {60.0};
+  o.plan.recovery_s = 60.0;
+  o.smooth = true;
+  const OutageRun run = run_outages(s.imu, s.gnss, s.kfgins, fo, test::truth_series(s), o);
+  ASSERT_GE(run.outages.size(), 2u);
+  for (const OutageResult& r : run.outages) {
+    EXPECT_LT(r.max_horizontal_m, 0.3) << "outage at " << r.window.start_s;
+    ASSERT_TRUE(r.smoothed.has_value());
+    EXPECT_LT(r.smoothed->max_horizontal_m, 0.3) << "smoothed, outage at " << r.window.start_s;
+  }
+}

@@ -33,6 +33,7 @@ class DriftTracker {
 
   void observe(const est::NavFilter& f) {
     last_ = f.state();
+    reference_t_s_ = o_.reference_on_gps_time ? f.gnss_time_s() : last_.t_s;
     if (last_.t_s + kEpochTolerance_s < next_eval_s_) return;
     last_std_ = f.nav_std();
     evaluate();
@@ -41,6 +42,7 @@ class DriftTracker {
 
   OutageResult finish(const est::NavFilter& f) {
     last_ = f.state();
+    reference_t_s_ = o_.reference_on_gps_time ? f.gnss_time_s() : last_.t_s;
     last_std_ = f.nav_std();
     if (const auto d = evaluate()) {
       r_.end_drift = *d;
@@ -52,7 +54,7 @@ class DriftTracker {
 
  private:
   std::optional<NavDifference> evaluate() {
-    const auto ref = ref_.at(last_.t_s);
+    const auto ref = ref_.at(reference_t_s_);
     if (!ref) return std::nullopt;
     const NavDifference d = nav_difference(sample_of(last_), *ref);
     const auto c = table_components(d);
@@ -70,6 +72,7 @@ class DriftTracker {
   const OutageRunOptions& o_;
   OutageResult r_;
   est::NavState last_;
+  double reference_t_s_ = 0.0;  // last_'s epoch on the reference's clock
   est::NavStd last_std_;
   double next_eval_s_ = -1e300, next_curve_s_ = 0.0;
 };
@@ -135,7 +138,8 @@ void smooth_outages(const std::vector<ImuIncrement>& imu, const std::vector<Gnss
   parallel_for(order, o.threads, [&](size_t g) {
     std::vector<OutageWindow> windows;
     for (size_t i : *groups[g]) windows.push_back(plan[i]);
-    const std::vector<SmoothedGap> s = smooth_through_gaps(imu, gnss, cfg, fo, windows, reference, o.others, o.eval_period_s);
+    const std::vector<SmoothedGap> s =
+        smooth_through_gaps(imu, gnss, cfg, fo, windows, reference, o.others, o.eval_period_s, o.reference_on_gps_time);
     for (size_t k = 0; k < s.size(); ++k) results[(*groups[g])[k]].smoothed = s[k];
     if (o.progress) {
       std::lock_guard<std::mutex> lock(say_mutex);
@@ -148,7 +152,9 @@ void smooth_outages(const std::vector<ImuIncrement>& imu, const std::vector<Gnss
 }  // namespace
 
 OutageRun run_outages(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss, const KfGinsConfig& cfg,
-                      const est::FilterOptions& fo, const NavSeries& truth, const OutageRunOptions& o) {
+                      const est::FilterOptions& fo, const NavSeries& truth, const OutageRunOptions& options) {
+  OutageRunOptions o = options;
+  o.reference_on_gps_time = !truth.empty();
   auto say = [&](const std::string& s) {
     if (o.progress) o.progress(s);
   };

@@ -33,6 +33,9 @@ struct OutageRunOptions {
   std::vector<est::ObservationPtr> others;
   // Also smooth: per length, one forward + RTS run with every gap of that length cut (outage_smoothed.hpp).
   bool smooth = false;
+  // The reference is on GPS time (a truth), not the filter's IMU time (the uncut run): the filter's epoch t is
+  // compared with it at t + time_offset (NavFilter::gnss_time_s). run_outages sets it when given a truth.
+  bool reference_on_gps_time = false;
 };
 
 struct DriftPoint {

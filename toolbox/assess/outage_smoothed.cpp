@@ -12,7 +12,8 @@ namespace ldv::assess {
 std::vector<SmoothedGap> smooth_through_gaps(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
                                              const KfGinsConfig& cfg, const est::FilterOptions& options,
                                              const std::vector<OutageWindow>& windows, const NavSeries& reference,
-                                             const std::vector<est::ObservationPtr>& others, double eval_period_s) {
+                                             const std::vector<est::ObservationPtr>& others, double eval_period_s,
+                                             bool reference_on_gps_time) {
   auto gap_of = [&](double t_s) {
     for (std::size_t g = 0; g < windows.size(); ++g)
       if (t_s > windows[g].start_s && t_s <= windows[g].start_s + windows[g].length_s) return static_cast<int>(g);
@@ -29,6 +30,8 @@ std::vector<SmoothedGap> smooth_through_gaps(const std::vector<ImuIncrement>& im
   cb.on_epoch = [&](const est::NavFilter& f) { recorder.add_row(f, 0); };
   est::run_navigation(imu, cut, cfg, filter, cb, nullptr, &others);
   const est::SmoothedRun run = recorder.smooth();
+  // A row at IMU epoch t is GPS time t + time_offset (the run's final estimate, as the smoothed files stamp it).
+  const double to_reference_s = reference_on_gps_time ? filter.gnss_time_s() - filter.state().t_s : 0.0;
 
   std::vector<SmoothedGap> out(windows.size());
   std::vector<double> next_t(windows.size(), -1e300);
@@ -37,7 +40,7 @@ std::vector<SmoothedGap> smooth_through_gaps(const std::vector<ImuIncrement>& im
     const int g = gap_of(t);
     if (g < 0 || t < next_t[g]) continue;
     next_t[g] = t + eval_period_s;
-    const auto ref = reference.at(t);
+    const auto ref = reference.at(t + to_reference_s);
     if (!ref) continue;
     const est::SmoothedRow r = run.row(i);
     const NavDifference ds = nav_difference(sample_of(r.smoothed), *ref);

@@ -23,10 +23,12 @@ struct SmoothedGap {
 };
 
 // `windows` must not overlap (one length of a plan). Results in the order of `windows`. eval_period_s:
-// the error is compared this often.
+// the error is compared this often. reference_on_gps_time: the reference is a truth on GPS time (rows are
+// compared with it at IMU epoch + time_offset), not the uncut run on the filter's IMU time.
 std::vector<SmoothedGap> smooth_through_gaps(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
                                              const KfGinsConfig& cfg, const est::FilterOptions& options,
                                              const std::vector<OutageWindow>& windows, const NavSeries& reference,
-                                             const std::vector<est::ObservationPtr>& others, double eval_period_s);
+                                             const std::vector<est::ObservationPtr>& others, double eval_period_s,
+                                             bool reference_on_gps_time);
 
 }  // namespace ldv::assess
