@@ -154,9 +154,10 @@ class NavFilter {
     double standstill_f_scatter_mps2 = 0.0;  // set_standstill_f_scatter
     double imu_noise_scale = 1.0;
     std::deque<Event> applied;  // readings applied within the history horizon (what a snapshot contains)
-    // The last GNSS position fix, if it was taken in at the edge of the gate (NIS above the 99 % quantile): the
-    // one to try without when the next fix is rejected (retract_suspect_fix). -1: none.
-    long gnss_suspect_id = -1;
+    // The last GNSS position fix, if it was taken in at the edge of the gate (NIS above the 99 % quantile) or
+    // right after a rejected one: the one to try without when the next fix is rejected (retract_suspect_fix).
+    long gnss_suspect_id = -1;  // -1: none
+    bool last_gnss_position_rejected = false;
   };
 
   void process_imu(const ImuIncrement& raw);
