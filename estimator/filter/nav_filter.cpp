@@ -532,7 +532,8 @@ void NavFilter::settle_suspect_fix() {
 }
 
 bool NavFilter::retract_suspect_fix(long suspect_id, long rejected_id) {
-  // A GNSS fix taken in at the edge of the gate (NIS above its 99 % quantile) and the next one rejected: either
+  // A GNSS fix taken in at the edge of the gate (NIS above its 99 % quantile) or right after a rejected one, and
+  // the next one rejected: either
   // the state has left the fixes (the ones after will confirm it and re-synchronise), or the edge fix was an
   // outlier that moved the state (a MEMS IMU's tilt, wide after a rejected fix, took a 1.2 m jump as 2.4 deg of
   // pitch, and drifted 6 m before the re-synchronisation). Try the state without it: if the rejected fix fits
@@ -565,7 +566,8 @@ bool NavFilter::retract_suspect_fix(long suspect_id, long rejected_id) {
   innovations_.resize(saved_records);
   observer_.p = observer;
   if (!fits_without) return false;
-  replay_from_snapshot(k, suspect_id);  // for real: the observer sees the restart and the replay
+  replay_from_snapshot(k, suspect_id);                // for real: the observer sees the restart and the replay
+  suspect_to_settle_ = rejected_after_suspect_ = -1;  // one retraction per rejection, not a cascade from the replay
   return true;
 }
 

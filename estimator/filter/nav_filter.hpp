@@ -186,8 +186,9 @@ class NavFilter {
   // Restores snapshot k and re-processes the IMU history after it, with the readings applied since except the one
   // with id `excluded_id`.
   void replay_from_snapshot(int k, long excluded_id);
-  // The fix after one taken in at the edge of the gate was rejected: keep the branch without the edge fix if the
-  // rejected one fits there (retract_suspect_fix). Called where no reading is being applied.
+  // The fix after a suspect one (taken in at the gate's edge or right after a rejection) was rejected: keep the
+  // branch without the suspect if the rejected one fits there (retract_suspect_fix). Called where no reading is
+  // being applied.
   void settle_suspect_fix();
   bool retract_suspect_fix(long suspect_id, long rejected_id);
   void note_gnss_position_outcome(const InnovationRecord& rec, bool forced, bool beyond_gate);
@@ -210,7 +211,7 @@ class NavFilter {
   std::deque<Core> snapshots_;
   bool replaying_ = false;
   long applying_event_id_ = -1;  // the reading apply_event is applying
-  // A GNSS position fix rejected right after an edge fix: {edge fix, rejected fix} ids, -1: none.
+  // A GNSS position fix rejected right after a suspect one: {suspect, rejected fix} ids, -1: none.
   long suspect_to_settle_ = -1, rejected_after_suspect_ = -1;
   bool trying_branch_ = false;  // inside retract_suspect_fix's trial
   bool trial_fits_ = false;     // the rejected fix, in the trial branch: within the gate's edge

@@ -24,7 +24,7 @@ struct FaultCounters {
   long covariance_resets = 0, state_resets = 0, imu_rejected = 0, imu_gaps = 0, late_dropped = 0, gate_rejections = 0,
        gate_resyncs = 0, measurements_rejected = 0;
   long downweighted = 0;     // beyond the gate, kept by the robust update with its noise inflated
-  long fixes_retracted = 0;  // taken in at the gate's edge, then undone: the next fix fitted only without it
+  long fixes_retracted = 0;  // suspect fixes undone: the next fix fitted only without them (retract_suspect_fix)
   long zupts_applied = 0, zupts_skipped_moving = 0;  // the latter: a stop's ZUPT that disagreed (the start)
 };
 

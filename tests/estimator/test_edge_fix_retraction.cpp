@@ -1,9 +1,10 @@
 // Two RTK outliers in a row on a MEMS IMU vibrating at 10x its datasheet noise (the simulator's truth): the
 // first is rejected, which leaves the state a second more uncertain, so the second, 1-2 m off, lands inside the
 // gate. A simulated 3DM-GX2 drive (--realism vehicle, seed 3) met exactly this: the filter took the second
-// outlier as 2.4 deg of pitch, drifted 6 m in 3 s and re-synchronised. The fix after an edge fix (NIS above the
-// 99 % quantile) that is rejected makes the filter try the state without the edge fix; where the rejected fix
-// fits there, that branch is kept (NavFilter::retract_suspect_fix).
+// outlier as 2.4 deg of pitch, drifted 6 m in 3 s and re-synchronised. A fix taken in at the gate's edge (NIS
+// above the 99 % quantile) or right after a rejected one is a suspect; when the fix after it is rejected, the
+// filter tries the state without the suspect, and where the rejected fix fits there, that branch is kept
+// (NavFilter::retract_suspect_fix).
 #include <gtest/gtest.h>
 
 #include <cmath>
