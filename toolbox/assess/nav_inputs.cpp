@@ -184,8 +184,81 @@ double imu_noise_needed(const NavInputs& in, const std::vector<ImuIncrement>& im
 }
 
 // A lag within what a forward lever arm could explain is taken when the filter needs this much less IMU noise
-// with it (a 1.5 m lever arm at 10 m/s taken for 150 ms would make the fit worse, not better).
+// with it (a 1.5 m lever arm at 10 m/s taken for 150 ms would make the fit worse, not better),
 constexpr double kLagNoiseGain = 0.7;
+// or when the GNSS positions' likelihood at the noise the data need rises by more than a 1-parameter test at
+// 99.9 % allows (-2 ln L falls by 10.8): under vibration both runs need the vibration's noise and the noise test
+// cannot tell (a 3DM-GX2 at 10x: 69.5x with the 77 ms lag, 70.2x without), while the likelihood can (-2 ln L
+// 66 lower with it; a 1.2 m forward lever arm taken for 138 ms: 162 higher).
+constexpr double kLagLikelihoodGain = 10.83;
+
+// -2 ln L of the GNSS positions as a function of a shift of the IMU stamps: sum over the fixes of NIS + ln det S
+// (positions only, the same fixes in every pass, an outlier counted as at the filter's gate), each pass with the
+// IMU shifted exactly and the IMU noise held at what a pass at the current stamps adapted to.
+class ShiftLikelihood {
+ public:
+  explicit ShiftLikelihood(const NavInputs& in) : in_(in), o_(in.options) {
+    o_.use_gnss_velocity = false;  // positions only: a GNSS velocity's own lag would take sides
+    gate_ = math::chi_square_quantile(o_.gate_probability, 3);
+    est::ImuNoiseScale q;
+    if (!pass(0.0, &q)) return;  // the run itself will say what is wrong
+    t0_ = terms_.front().first + 5.0, t1_ = terms_.back().first - 1.0;
+    have_zero_ = !o_.adapt_imu_noise;  // the pass at 0 is then the one the scan would make
+    if (o_.adapt_imu_noise) {
+      o_.arw_rad_per_sqrt_s *= std::sqrt(q.gyro);
+      o_.vrw_mps_per_sqrt_s *= std::sqrt(q.accel);
+      o_.adapt_imu_noise = false;
+    }
+    ok_ = true;
+  }
+  bool ok() const { return ok_; }
+  const est::FilterOptions& options() const { return o_; }
+  // NaN when the pass failed or saw other fixes than the first.
+  double cost(double lag_s) {
+    if (!ok_) return NAN;
+    const bool reuse = have_zero_ && lag_s == 0.0 && !zero_used_;
+    if (reuse) zero_used_ = true;
+    if (!reuse && !pass(lag_s, nullptr)) return NAN;
+    double sum = 0.0;
+    long n = 0;
+    for (const auto& [t, j] : terms_)
+      if (t >= t0_ && t <= t1_) {
+        sum += j;
+        ++n;
+      }
+    if (fixes_ >= 0 && n != fixes_) return NAN;
+    fixes_ = n;
+    return sum;
+  }
+
+ private:
+  bool pass(double lag_s, est::ImuNoiseScale* noise) {
+    terms_.clear();
+    est::RunCallbacks cb;
+    cb.on_innovation = [&](const est::InnovationRecord& r) {
+      if (r.sensor != est::sensors::kGnssPosition || r.replayed) return;
+      const Eigen::LLT<Eigen::MatrixXd> llt(r.S);
+      if (llt.info() != Eigen::Success) return;
+      const Eigen::MatrixXd L = llt.matrixL();
+      terms_.push_back({r.t_s, std::min(r.nis, gate_) + 2.0 * L.diagonal().array().log().sum()});
+    };
+    try {
+      est::NavFilter filter(o_);
+      est::run_navigation(shifted(in_.imu, lag_s), in_.gnss, in_.config, filter, cb);
+      if (noise) *noise = filter.imu_noise_psd_scale();
+    } catch (const std::exception&) {
+      return false;
+    }
+    return !terms_.empty();
+  }
+
+  const NavInputs& in_;
+  est::FilterOptions o_;
+  double gate_ = 0.0, t0_ = 0.0, t1_ = 0.0;
+  std::vector<std::pair<double, double>> terms_;
+  long fixes_ = -1;
+  bool ok_ = false, have_zero_ = false, zero_used_ = false;
+};
 
 // What is left of a latency taken out (its sigma: 1-12 ms, i.e. decimetres at road speed in every turn) is
 // estimated by the likelihood of the GNSS positions as a function of a further shift of the IMU stamps: a few
@@ -198,66 +271,17 @@ constexpr double kLagNoiseGain = 0.7;
 // the turns did and agrees with its prior (4 sigma).
 void refine_latency_with_filter(const NavInputArgs& a, NavInputs& in) {
   if (!a.refine_latency_in_filter) return;
-  est::FilterOptions o = in.options;
-  o.use_gnss_velocity = false;  // positions only: a GNSS velocity's own lag would take sides
-  const std::vector<std::string> model = est::resolve_model(o.model, o.add, o.drop);
+  const std::vector<std::string> model = est::resolve_model(in.options.model, in.options.add, in.options.drop);
   if (std::find(model.begin(), model.end(), "time_offset") != model.end()) return;  // the user's own
-  if (std::find(o.drop.begin(), o.drop.end(), "time_offset") != o.drop.end()) return;  // the user's wish
+  if (std::find(in.options.drop.begin(), in.options.drop.end(), "time_offset") != in.options.drop.end()) return;
   // The prior: 0 with twice the turns' sigma, which under vibration is about half their real scatter (3DM-GX2
   // at 10x, 24 drives: rms error / sigma 2.0); the scan steps by the turns' sigma.
   const double turns_s = std::max(in.imu_latency.sigma_s, 0.002), prior_s = 2.0 * turns_s;
-  // One pass with the IMU stamps moved earlier by lag_s: each GNSS position's (t, NIS + ln det S), an outlier
-  // counted as at the filter's gate. False when the run failed.
-  const double gate = math::chi_square_quantile(o.gate_probability, 3);
-  const auto pass = [&](const est::FilterOptions& opt, double lag_s, std::vector<std::pair<double, double>>& terms,
-                        est::ImuNoiseScale* noise) {
-    terms.clear();
-    est::RunCallbacks cb;
-    cb.on_innovation = [&](const est::InnovationRecord& r) {
-      if (r.sensor != est::sensors::kGnssPosition || r.replayed) return;
-      const Eigen::LLT<Eigen::MatrixXd> llt(r.S);
-      if (llt.info() != Eigen::Success) return;
-      const Eigen::MatrixXd L = llt.matrixL();
-      terms.push_back({r.t_s, std::min(r.nis, gate) + 2.0 * L.diagonal().array().log().sum()});
-    };
-    try {
-      est::NavFilter filter(opt);
-      est::run_navigation(shifted(in.imu, lag_s), in.gnss, in.config, filter, cb);
-      if (noise) *noise = filter.imu_noise_psd_scale();
-    } catch (const std::exception&) {
-      return false;
-    }
-    return !terms.empty();
-  };
-  // The fixes every pass has (a shift moves the first and last) and the IMU noise this data needs, held
-  // fixed for the scan: from a pass at the turns' lag.
-  std::vector<std::pair<double, double>> terms;
-  est::ImuNoiseScale q;
-  if (!pass(o, 0.0, terms, &q)) return;  // the run itself will say what is wrong
-  const double t0 = terms.front().first + 5.0, t1 = terms.back().first - 1.0;
-  const bool reuse = !o.adapt_imu_noise;
-  if (o.adapt_imu_noise) {
-    o.arw_rad_per_sqrt_s *= std::sqrt(q.gyro);
-    o.vrw_mps_per_sqrt_s *= std::sqrt(q.accel);
-    o.adapt_imu_noise = false;
-  }
-  long fixes = -1;
-  const auto cost = [&](double lag_s, bool first) {
-    if (!(first && reuse) && !pass(o, lag_s, terms, nullptr)) return static_cast<double>(NAN);
-    double sum = 0.0;
-    long n = 0;
-    for (const auto& [t, j] : terms)
-      if (t >= t0 && t <= t1) {
-        sum += j;
-        ++n;
-      }
-    if (fixes >= 0 && n != fixes) return static_cast<double>(NAN);
-    fixes = n;
-    return sum;
-  };
+  ShiftLikelihood likelihood(in);
+  if (!likelihood.ok()) return;
   std::vector<std::pair<double, double>> pts;  // (lag, -2 ln L + prior)
   const auto eval = [&](double lag_s) {
-    const double j = cost(lag_s, pts.empty());
+    const double j = likelihood.cost(lag_s);
     if (std::isfinite(j)) pts.push_back({lag_s, j + (lag_s / prior_s) * (lag_s / prior_s)});
     return std::isfinite(j);
   };
@@ -335,7 +359,7 @@ void estimate_and_remove_imu_latency(const NavInputArgs& a, bool shift_given, Na
   if (!wanted || in.imu.empty() || in.gnss.empty()) return;
   in.imu_latency = est::estimate_imu_latency(in.imu, in.gnss);
   const est::ImuLatencyEstimate& e = in.imu_latency;
-  char note[400];
+  char note[512];
   if (!e.valid) {
     std::snprintf(note, sizeof note, "; IMU latency not estimated (%d turning GNSS intervals)", e.turning_intervals);
   } else if (e.significant()) {
@@ -352,7 +376,9 @@ void estimate_and_remove_imu_latency(const NavInputArgs& a, bool shift_given, Na
     const double noise_without = imu_noise_needed(in, in.imu);
     std::vector<ImuIncrement> lagged = shifted(in.imu, e.lag_s);
     const double noise_with = imu_noise_needed(in, lagged);
-    const bool take = noise_with < kLagNoiseGain * noise_without;
+    ShiftLikelihood likelihood(in);
+    const double fall = likelihood.cost(0.0) - likelihood.cost(e.lag_s);  // -2 ln L without minus with
+    const bool take = noise_with < kLagNoiseGain * noise_without || fall > kLagLikelihoodGain;
     if (take) {
       in.imu = std::move(lagged);
       in.imu_latency_applied = true;
@@ -367,8 +393,9 @@ void estimate_and_remove_imu_latency(const NavInputArgs& a, bool shift_given, Na
     else
       std::snprintf(why, sizeof why, "only %.1f of the turns' sigmas", std::abs(e.lag_s) / e.sigma_s);
     std::snprintf(note, sizeof note,
-                  "; IMU latency %.1f +- %.1f ms: %s; the filter needs %.3gx the IMU noise with it, %.3gx without: %s",
-                  1e3 * e.lag_s, 1e3 * e.sigma_s, why, noise_with, noise_without,
+                  "; IMU latency %.1f +- %.1f ms: %s; the filter needs %.3gx the IMU noise with it, %.3gx without, "
+                  "and -2 ln L of the fixes falls by %.1f with it: %s",
+                  1e3 * e.lag_s, 1e3 * e.sigma_s, why, noise_with, noise_without, fall,
                   take ? "a lag, taken out" : "not applied (the time_offset and lever_arm effects can estimate it)");
   } else {
     std::snprintf(note, sizeof note, "; IMU latency %.1f +- %.1f ms (not significant, not applied)", 1e3 * e.lag_s,
