@@ -392,10 +392,13 @@ void estimate_and_remove_imu_latency(const NavInputArgs& a, bool shift_given, Na
                     1e3 * e.lever_arm_equivalent_lag_s());
     else
       std::snprintf(why, sizeof why, "only %.1f of the turns' sigmas", std::abs(e.lag_s) / e.sigma_s);
+    char likelihood_said[96] = "the fixes' likelihood could not be compared (a pass failed or saw other fixes)";
+    if (std::isfinite(fall))
+      std::snprintf(likelihood_said, sizeof likelihood_said, "-2 ln L of the fixes falls by %.1f with it", fall);
     std::snprintf(note, sizeof note,
                   "; IMU latency %.1f +- %.1f ms: %s; the filter needs %.3gx the IMU noise with it, %.3gx without, "
-                  "and -2 ln L of the fixes falls by %.1f with it: %s",
-                  1e3 * e.lag_s, 1e3 * e.sigma_s, why, noise_with, noise_without, fall,
+                  "and %s: %s",
+                  1e3 * e.lag_s, 1e3 * e.sigma_s, why, noise_with, noise_without, likelihood_said,
                   take ? "a lag, taken out" : "not applied (the time_offset and lever_arm effects can estimate it)");
   } else {
     std::snprintf(note, sizeof note, "; IMU latency %.1f +- %.1f ms (not significant, not applied)", 1e3 * e.lag_s,
