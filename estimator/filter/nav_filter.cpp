@@ -70,14 +70,21 @@ NavFilter::NavFilter(FilterOptions options)
     J_gyro_.push_back(Mat3X::Zero(3, b.dim));
     J_accel_.push_back(Mat3X::Zero(3, b.dim));
   }
-  for (int dof = 0; dof <= kCachedGateDof; ++dof)
+  for (int dof = 0; dof <= kCachedGateDof; ++dof) {
     gates_.push_back(dof == 0 ? 0.0 : math::chi_square_quantile(opt_.gate_probability, dof));
+    gate_edges_.push_back(dof == 0 ? 0.0 : math::chi_square_quantile(kGateEdgeProbability, dof));
+  }
   C_b_v_coarse_ = C_b_n_from_euler(opt_.aids.mounting_rpy_rad);
 }
 
 double NavFilter::gate_threshold(int dof) const {
   if (dof >= 0 && dof <= kCachedGateDof) return gates_[dof];
   return math::chi_square_quantile(opt_.gate_probability, dof);
+}
+
+double NavFilter::gate_edge(int dof) const {
+  if (dof >= 0 && dof <= kCachedGateDof) return gate_edges_[dof];
+  return math::chi_square_quantile(kGateEdgeProbability, dof);
 }
 
 void NavFilter::restart() {
@@ -687,8 +694,7 @@ void NavFilter::apply_measurement(const Measurement& m) {
 }
 
 void NavFilter::note_gnss_position_outcome(const InnovationRecord& rec, bool forced, bool beyond_gate) {
-  const bool at_edge =
-      rec.nis > math::chi_square_quantile(kGateEdgeProbability, static_cast<int>(rec.innovation.size()));
+  const bool at_edge = rec.nis > gate_edge(static_cast<int>(rec.innovation.size()));
   if (trying_branch_) {
     if (applying_event_id_ == rejected_after_suspect_) trial_fits_ = !beyond_gate && !at_edge;
     return;

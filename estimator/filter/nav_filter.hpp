@@ -191,6 +191,7 @@ class NavFilter {
   // being applied.
   void settle_suspect_fix();
   bool retract_suspect_fix(long suspect_id, long rejected_id);
+  double gate_edge(int dof) const;  // NIS above it: taken in at the gate's edge
   void note_gnss_position_outcome(const InnovationRecord& rec, bool forced, bool beyond_gate);
 
   FilterOptions opt_;
@@ -201,6 +202,7 @@ class NavFilter {
   Eigen::VectorXd q_c_;
   std::vector<Mat3X> J_gyro_, J_accel_;  // per-block workspaces
   std::vector<double> gates_;            // chi-square gate by dof (index = rows)
+  std::vector<double> gate_edges_;       // the gate's edge (kGateEdgeProbability) by dof
   Mat3 C_b_v_coarse_ = Mat3::Identity();
 
   Core c_;

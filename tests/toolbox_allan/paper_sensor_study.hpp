@@ -249,35 +249,44 @@ inline double binomial_lower_tail(int k, int n, double p) {
 // of 20 passes would get there).
 constexpr double kPooledCoverageMin = 0.92, kPooledCoverageMax = 0.99;
 
+// Calls f(axis, term, its tally, "GRADE LABEL CHANNEL TERM") for every term of every axis of one analysis.
+template <class F>
+void for_each_term(const PaperStudy& s, const std::vector<AxisTally>& axes, const char* label, F f) {
+  for (const AxisTally& a : axes)
+    for (int i = 0; i < static_cast<int>(PaperTerm::kCount); ++i) {
+      const auto t = static_cast<PaperTerm>(i);
+      f(a, t, a[t], s.grade + " " + label + " " + a.truth.channel + " " + term_name(t));
+    }
+}
+
+inline void print_beyond_the_record(const std::string& what, const TermTally& tt, PaperTerm t) {
+  std::printf("%s: beyond the record (bound %.1f %% x 1.645 > %.0f %%): within in %d of %d, RMS %.1f %%\n",
+              what.c_str(), 100 * tt.precision(), 100 * tolerance(t), tt.within, tt.judged, 100 * tt.rms());
+}
+
 // The issue's criteria on one analysis of a study: absent terms never resolved; every term carried inside its
 // reported 95 % interval in `fraction` of the seeds; within its tolerance in `fraction` of the seeds where the
 // record's information allows it (1.645 x bound <= tolerance), else printed as beyond the record.
 inline void expect_paper_criteria(const PaperStudy& s, const std::vector<AxisTally>& axes, const char* label,
                                   double fraction) {
-  for (const AxisTally& a : axes) {
-    for (int i = 0; i < static_cast<int>(PaperTerm::kCount); ++i) {
-      const auto t = static_cast<PaperTerm>(i);
-      const TermTally& tt = a[t];
-      const std::string what = s.grade + " " + label + " " + a.truth.channel + " " + term_name(t);
-      if (a.truth[t] <= 0) {
-        EXPECT_EQ(tt.resolved_absent, 0) << what << ": absent in the paper's table, reported resolved";
-        continue;
-      }
-      if (tt.judged == 0) continue;  // the flat B was chosen every time: no GM to judge
-      const double need = fraction * tt.judged;
-      EXPECT_GE(tt.covered, need) << what << ": truth inside the 95 % interval in " << tt.covered << " of " << tt.judged
-                                  << " (a calibrated interval does this or worse in "
-                                  << std::round(1000 * binomial_lower_tail(tt.covered, tt.judged, 0.95)) / 10
-                                  << " % of sets)";
-      if (reachable(tt, t))
-        EXPECT_GE(tt.within, need) << what << ": within " << 100 * tolerance(t) << " % in " << tt.within << " of "
-                                   << tt.judged << " (RMS " << 100 * tt.rms() << " %, bound " << 100 * tt.precision()
-                                   << " %)";
-      else
-        std::printf("%s: beyond the record (bound %.1f %% x 1.645 > %.0f %%): within in %d of %d, RMS %.1f %%\n",
-                    what.c_str(), 100 * tt.precision(), 100 * tolerance(t), tt.within, tt.judged, 100 * tt.rms());
+  for_each_term(s, axes, label, [&](const AxisTally& a, PaperTerm t, const TermTally& tt, const std::string& what) {
+    if (a.truth[t] <= 0) {
+      EXPECT_EQ(tt.resolved_absent, 0) << what << ": absent in the paper's table, reported resolved";
+      return;
     }
-  }
+    if (tt.judged == 0) return;  // the flat B was chosen every time: no GM to judge
+    const double need = fraction * tt.judged;
+    EXPECT_GE(tt.covered, need) << what << ": truth inside the 95 % interval in " << tt.covered << " of " << tt.judged
+                                << " (a calibrated interval does this or worse in "
+                                << std::round(1000 * binomial_lower_tail(tt.covered, tt.judged, 0.95)) / 10
+                                << " % of sets)";
+    if (reachable(tt, t))
+      EXPECT_GE(tt.within, need) << what << ": within " << 100 * tolerance(t) << " % in " << tt.within << " of "
+                                 << tt.judged << " (RMS " << 100 * tt.rms() << " %, bound " << 100 * tt.precision()
+                                 << " %)";
+    else
+      print_beyond_the_record(what, tt, t);
+  });
 }
 
 // The issue's per-term bars at 20 seeds, judged as what they can tell. "Inside the 95 % interval in 90 % of
@@ -307,50 +316,44 @@ inline double binomial_upper_tail(int k, int n, double p) {
 inline void expect_paper_criteria_tested(const PaperStudy& s, const std::vector<AxisTally>& axes, const char* label) {
   int under_bar = 0, tallies = 0, absent_calls = 0, absent_records = 0;
   double expected_under_bar = 0.0;
-  for (const AxisTally& a : axes) {
-    for (int i = 0; i < static_cast<int>(PaperTerm::kCount); ++i) {
-      const auto t = static_cast<PaperTerm>(i);
-      const TermTally& tt = a[t];
-      const std::string what = s.grade + " " + label + " " + a.truth.channel + " " + term_name(t);
-      if (a.truth[t] <= 0) {
-        absent_calls += tt.resolved_absent, absent_records += tt.absent_judged;
-        if (tt.resolved_absent > 0)
-          std::printf("%s: absent in the paper's table, reported resolved in %d of %d seeds\n", what.c_str(),
-                      tt.resolved_absent, tt.absent_judged);
-        continue;
-      }
-      if (tt.judged == 0) continue;  // the flat B was chosen every time: no GM to judge
-      const int bar = static_cast<int>(std::ceil(0.9 * tt.judged - 1e-9));
-      ++tallies;
-      expected_under_bar += binomial_lower_tail(bar - 1, tt.judged, 0.95);
-      const double covered_tail = binomial_lower_tail(tt.covered, tt.judged, 0.95);
-      if (tt.covered < bar) {
-        ++under_bar;
-        std::printf(
-            "%s: under the 90 %% bar, truth inside the 95 %% interval in %d of %d (a calibrated interval "
-            "does this or worse in %.1f %% of sets)\n",
-            what.c_str(), tt.covered, tt.judged, 100 * covered_tail);
-        EXPECT_GE(covered_tail, kTallyTailMin) << what << ": truth inside the 95 % interval in only " << tt.covered
-                                               << " of " << tt.judged << ": the interval is too narrow";
-      }
-      if (!reachable(tt, t)) {
-        std::printf("%s: beyond the record (bound %.1f %% x 1.645 > %.0f %%): within in %d of %d, RMS %.1f %%\n",
-                    what.c_str(), 100 * tt.precision(), 100 * tolerance(t), tt.within, tt.judged, 100 * tt.rms());
-        continue;
-      }
-      if (tt.within >= bar) continue;
-      const double share = efficient_within_share(tolerance(t), tt.precision());
-      const double within_tail = binomial_lower_tail(tt.within, tt.judged, share);
-      std::printf(
-          "%s: under the 90 %% bar, within %.0f %% in %d of %d (RMS %.1f %%, bound %.1f %%: an efficient "
-          "estimator is within in %.1f %% of seeds, and does this or worse in %.1f %% of sets)\n",
-          what.c_str(), 100 * tolerance(t), tt.within, tt.judged, 100 * tt.rms(), 100 * tt.precision(), 100 * share,
-          100 * within_tail);
-      EXPECT_GE(within_tail, kTallyTailMin)
-          << what << ": within " << 100 * tolerance(t) << " % in only " << tt.within << " of " << tt.judged << " (RMS "
-          << 100 * tt.rms() << " %, bound " << 100 * tt.precision() << " %)";
+  for_each_term(s, axes, label, [&](const AxisTally& a, PaperTerm t, const TermTally& tt, const std::string& what) {
+    if (a.truth[t] <= 0) {
+      absent_calls += tt.resolved_absent, absent_records += tt.absent_judged;
+      if (tt.resolved_absent > 0)
+        std::printf("%s: absent in the paper's table, reported resolved in %d of %d seeds\n", what.c_str(),
+                    tt.resolved_absent, tt.absent_judged);
+      return;
     }
-  }
+    if (tt.judged == 0) return;  // the flat B was chosen every time: no GM to judge
+    const int bar = static_cast<int>(std::ceil(0.9 * tt.judged - 1e-9));
+    ++tallies;
+    expected_under_bar += binomial_lower_tail(bar - 1, tt.judged, 0.95);
+    const double covered_tail = binomial_lower_tail(tt.covered, tt.judged, 0.95);
+    if (tt.covered < bar) {
+      ++under_bar;
+      std::printf(
+          "%s: under the 90 %% bar, truth inside the 95 %% interval in %d of %d (a calibrated interval "
+          "does this or worse in %.1f %% of sets)\n",
+          what.c_str(), tt.covered, tt.judged, 100 * covered_tail);
+      EXPECT_GE(covered_tail, kTallyTailMin) << what << ": truth inside the 95 % interval in only " << tt.covered
+                                             << " of " << tt.judged << ": the interval is too narrow";
+    }
+    if (!reachable(tt, t)) {
+      print_beyond_the_record(what, tt, t);
+      return;
+    }
+    if (tt.within >= bar) return;
+    const double share = efficient_within_share(tolerance(t), tt.precision());
+    const double within_tail = binomial_lower_tail(tt.within, tt.judged, share);
+    std::printf(
+        "%s: under the 90 %% bar, within %.0f %% in %d of %d (RMS %.1f %%, bound %.1f %%: an efficient "
+        "estimator is within in %.1f %% of seeds, and does this or worse in %.1f %% of sets)\n",
+        what.c_str(), 100 * tolerance(t), tt.within, tt.judged, 100 * tt.rms(), 100 * tt.precision(), 100 * share,
+        100 * within_tail);
+    EXPECT_GE(within_tail, kTallyTailMin)
+        << what << ": within " << 100 * tolerance(t) << " % in only " << tt.within << " of " << tt.judged << " (RMS "
+        << 100 * tt.rms() << " %, bound " << 100 * tt.precision() << " %)";
+  });
   std::printf("%s %s: %d of %d interval tallies under the 90 %% bar; a calibrated interval expects %.1f\n",
               s.grade.c_str(), label, under_bar, tallies, expected_under_bar);
   const double absent_tail = binomial_upper_tail(absent_calls, absent_records, kAbsentFalseAlarm);
@@ -366,13 +369,9 @@ inline void expect_paper_criteria_tested(const PaperStudy& s, const std::vector<
 inline void expect_pooled_coverage_calibrated(const PaperStudy& s, const std::vector<AxisTally>& axes,
                                               const char* label) {
   int pooled_covered = 0, pooled_judged = 0;
-  for (const AxisTally& a : axes) {
-    for (int i = 0; i < static_cast<int>(PaperTerm::kCount); ++i) {
-      const auto t = static_cast<PaperTerm>(i);
-      if (a.truth[t] <= 0) continue;
-      pooled_covered += a[t].covered, pooled_judged += a[t].judged;
-    }
-  }
+  for_each_term(s, axes, label, [&](const AxisTally& a, PaperTerm t, const TermTally& tt, const std::string&) {
+    if (a.truth[t] > 0) pooled_covered += tt.covered, pooled_judged += tt.judged;
+  });
   ASSERT_GT(pooled_judged, 0);
   const double pooled = static_cast<double>(pooled_covered) / pooled_judged;
   std::printf("%s %s: every interval pooled, truth inside in %d of %d (%.1f %%)\n", s.grade.c_str(), label,
