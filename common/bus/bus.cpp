@@ -1,11 +1,20 @@
 #include "common/bus/bus.hpp"
 
+#include <algorithm>
+#include <chrono>
 #include <stdexcept>
+#include <thread>
 
 namespace ldv {
 
 Bus::Bus(const std::string& url) : lcm_(std::make_unique<lcm::LCM>(url)) {
-  if (!lcm_->good()) throw std::runtime_error("LCM could not start on '" + (url.empty() ? std::string("default URL") : url) + "' (multicast route missing? see deploy/README.md)");
+  const std::string named = url.empty() ? std::string("default URL") : url;
+  if (!lcm_->good())
+    throw std::runtime_error("LCM could not start on '" + named + "' (multicast route missing? see deploy/README.md)");
+  // A provider that started without a connection (tcpq:// with no server listening) has no descriptor: LCM's
+  // handleTimeout would then select() on -1 and abort the process.
+  if (lcm_->getFileno() < 0)
+    throw std::runtime_error("LCM on '" + named + "' is not connected (no server listening there?)");
 }
 
 Bus::~Bus() = default;
@@ -17,6 +26,12 @@ void Bus::subscribe_raw(const std::string& channel_regex, RawHandler handler, in
   subscriptions_.push_back(std::move(sub));
 }
 
-int Bus::handle(int timeout_ms) { return lcm_->handleTimeout(timeout_ms); }
+int Bus::handle(int timeout_ms) {
+  if (lcm_->getFileno() < 0) {  // the connection went away: never select() on -1 (an abort)
+    std::this_thread::sleep_for(std::chrono::milliseconds(std::max(0, timeout_ms)));
+    return -1;
+  }
+  return lcm_->handleTimeout(timeout_ms);
+}
 
 }  // namespace ldv

@@ -2,6 +2,9 @@
 
 #include <cmath>
 
+#include "common/formats/gnss_solution_checks.hpp"
+#include "common/formats/imu_sample_checks.hpp"
+
 namespace ldv {
 
 ImuIncrement imu_from_message(const ldv_lcm::imu_sample_t& m) {
@@ -62,37 +65,49 @@ ldv_lcm::gnss_solution_t message_from_gnss(const GnssFix& g, int gps_week, int64
   return m;
 }
 
-namespace {
-bool all_finite(const double* v, int n) {
-  for (int i = 0; i < n; ++i)
-    if (!std::isfinite(v[i])) return false;
-  return true;
-}
-}  // namespace
-
-bool is_valid(const ldv_lcm::imu_sample_t& m) {
-  return std::isfinite(m.gps_sow_s) && std::isfinite(m.dt_s) && m.dt_s > 0 && m.dt_s < 1.0 &&
-         all_finite(m.dtheta_b_rad, 3) && all_finite(m.dvel_b_mps, 3);
-}
-
-bool is_valid(const ldv_lcm::gnss_solution_t& m) {
-  return std::isfinite(m.gps_sow_s) && std::isfinite(m.lat_deg) && std::abs(m.lat_deg) <= 90 &&
-         std::isfinite(m.lon_deg) && std::isfinite(m.height_m) && all_finite(m.pos_cov_ned_m2, 9) &&
-         m.pos_cov_ned_m2[0] > 0 && m.pos_cov_ned_m2[4] > 0 && m.pos_cov_ned_m2[8] > 0 &&
-         (!m.has_velocity || (all_finite(m.vel_ned_mps, 3) && all_finite(m.vel_var_ned_m2s2, 3) &&
-                              m.vel_var_ned_m2s2[0] > 0 && m.vel_var_ned_m2s2[1] > 0 && m.vel_var_ned_m2s2[2] > 0));
+// The bus-input contract: each message is checked by the code that checks the files and decoders' output
+// (gnss_solution_checks, imu_sample_checks), so a value refused in a file is refused on the bus too.
+std::optional<std::string> implausibility(const ldv_lcm::imu_sample_t& m) {
+  // Host-clock stamps (before imu_acq's PPS fit) carry no GPS week to check; they are still seconds of week.
+  if (has_gps_time(m)) {
+    if (auto why = gnss::implausibility(GpsTime{m.gps_week, m.gps_sow_s})) return why;
+  } else if (!(std::isfinite(m.gps_sow_s) && m.gps_sow_s >= 0.0 && m.gps_sow_s < kSecondsPerWeek)) {
+    return "time of week not in [0, 604800)";
+  }
+  const ImuIncrement s = imu_from_message(m);
+  return imu_increment_implausibility(s.dtheta_b_rad, s.dvel_b_mps, s.dt_s);
 }
 
-bool is_valid(const ldv_lcm::wheel_speed_t& m) {
+std::optional<std::string> implausibility(const ldv_lcm::gnss_solution_t& m) {
+  if (m.has_velocity) {
+    for (double var : m.vel_var_ned_m2s2)
+      if (!(var >= 0.0)) return "velocity variance not finite and >= 0";
+  }
+  gnss::GnssSolution s;
+  s.time = {m.gps_week, m.gps_sow_s};
+  s.fix = gnss_from_message(m);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) s.pos_cov_ned_m2(r, c) = m.pos_cov_ned_m2[3 * r + c];
+  if (auto why = gnss::implausibility(s)) return why;
+  if (m.fix_quality < 0 || m.fix_quality > 6) return "fix quality " + std::to_string(m.fix_quality) + " not in [0, 6]";
+  return std::nullopt;
+}
+
+std::optional<std::string> implausibility(const ldv_lcm::wheel_speed_t& m) {
   const size_t n = static_cast<size_t>(m.num_wheels);
   if (m.num_wheels < 1 || m.num_wheels > 8 || m.wheel_id.size() != n || m.speed_mps.size() != n || m.counts.size() != n)
-    return false;
-  if (!std::isfinite(m.gps_sow_s) || m.gps_sow_s < 0 || m.gps_sow_s >= 604800.0 || m.gps_week < 0) return false;
+    return "wheel count and arrays disagree or not in [1, 8]";
+  if (auto why = gnss::implausibility(GpsTime{m.gps_week, m.gps_sow_s})) return why;
   for (size_t i = 0; i < n; ++i)
     if (!std::isfinite(m.speed_mps[i]) || std::abs(m.speed_mps[i]) > 150.0 || m.wheel_id[i] < 0 || m.wheel_id[i] > 4)
-      return false;
-  return std::isfinite(m.counts_per_m) && std::isfinite(m.latency_s);
+      return "wheel speed not finite within +-150 m/s, or a wheel id not in [0, 4]";
+  if (!std::isfinite(m.counts_per_m) || !std::isfinite(m.latency_s)) return "counts per metre or latency not finite";
+  return std::nullopt;
 }
+
+bool is_valid(const ldv_lcm::imu_sample_t& m) { return !implausibility(m); }
+bool is_valid(const ldv_lcm::gnss_solution_t& m) { return !implausibility(m); }
+bool is_valid(const ldv_lcm::wheel_speed_t& m) { return !implausibility(m); }
 
 std::optional<double> odometer_speed_from_message(const ldv_lcm::wheel_speed_t& m) {
   if (!is_valid(m) || !(m.status & kWheelStatusSpeedsValid) || (m.status & kWheelStatusSlipping)) return std::nullopt;

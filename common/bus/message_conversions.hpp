@@ -5,6 +5,7 @@
 #include <ldv_lcm/imu_sample_t.hpp>
 #include <ldv_lcm/wheel_speed_t.hpp>
 #include <optional>
+#include <string>
 
 #include "common/formats/nav_types.hpp"
 
@@ -36,10 +37,16 @@ std::optional<double> odometer_speed_from_message(const ldv_lcm::wheel_speed_t& 
 // One odometer speed as a one-wheel message (wheel 0), speeds valid.
 ldv_lcm::wheel_speed_t message_from_odometer(double t_s, double speed_mps, int gps_week, int64_t seq);
 
-// True when every number in the message is finite and the std/quality fields are plausible.
+// The bus-input contract: why a message cannot be a real reading (nullopt when it can). IMU: a plausible GPS
+// week and seconds of week (unless host-clock stamped), an interval in (0, 1) s, rates an IMU can sense
+// (imu_sample_checks.hpp). GNSS: what gnss::implausibility refuses in decoded files and streams (week, time
+// of week, latitude, height, a positive-definite covariance within bounds, a speed below 1000 m/s) and a
+// known fix quality. Wheel speed: 1-8 wheels with arrays of that length, speeds within +-150 m/s, GPS time.
+std::optional<std::string> implausibility(const ldv_lcm::imu_sample_t& m);
+std::optional<std::string> implausibility(const ldv_lcm::gnss_solution_t& m);
+std::optional<std::string> implausibility(const ldv_lcm::wheel_speed_t& m);
 bool is_valid(const ldv_lcm::imu_sample_t& m);
 bool is_valid(const ldv_lcm::gnss_solution_t& m);
-// Finite, 1-8 wheels with arrays of that length, speeds within +-150 m/s, a time of week within the week.
 bool is_valid(const ldv_lcm::wheel_speed_t& m);
 
 }  // namespace ldv

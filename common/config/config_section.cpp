@@ -1,5 +1,7 @@
 #include "common/config/config_section.hpp"
 
+#include <arpa/inet.h>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -78,6 +80,7 @@ ConfigSection ConfigSection::load(const std::string& path) {
   }
   if (root.IsNull()) root = YAML::Node(YAML::NodeType::Map);  // an empty file: every default
   if (!root.IsMap()) throw ConfigError(path + ":" + line_of(root.Mark()) + ": expected a map of keys");
+  if (const auto d = find_duplicate_key(root)) throw ConfigError(path + ":" + std::to_string(d->line) + ": " + d->describe());
   return ConfigSection(root, path);
 }
 
@@ -163,7 +166,51 @@ std::string ConfigSection::text(const std::string& key, const std::string& fallb
   const YAML::Node v = value(key);
   if (!v.IsDefined() || v.IsNull()) return fallback;
   if (!v.IsScalar()) fail(key, "expected a text value, found a list or map");
+  // A NUL would cut a path or a name short where the C libraries read it.
+  if (v.Scalar().find('\0') != std::string::npos) fail(key, "expected text without a NUL character");
   return v.Scalar();
+}
+
+std::string ConfigSection::channel(const std::string& key, const std::string& fallback) {
+  const std::string c = text(key, fallback);
+  // LCM's own limit (LCM_MAX_CHANNEL_NAME_LENGTH): a longer name is not sent at all, silently.
+  constexpr std::size_t kMaxLcmChannel = 63;
+  const bool printable = std::all_of(c.begin(), c.end(), [](char ch) { return ch > ' ' && ch < 127; });
+  if (c.empty() || c.size() > kMaxLcmChannel || !printable)
+    fail(key, "expected an LCM channel name of 1 to 63 printable characters without spaces, found " +
+                  std::to_string(c.size()) + " characters");
+  return c;
+}
+
+std::string ConfigSection::ipv4_multicast_group(const std::string& key, const std::string& fallback) {
+  const std::string g = text(key, fallback);
+  in_addr a{};
+  const bool dotted = inet_pton(AF_INET, g.c_str(), &a) == 1;
+  const uint32_t host = ntohl(a.s_addr);
+  if (!dotted || (host >> 28) != 0xE)
+    fail(key, "expected an IPv4 multicast address (224.0.0.0 to 239.255.255.255, nothing else), found '" + g + "'");
+  return g;
+}
+
+std::optional<DuplicateKey> find_duplicate_key(const YAML::Node& node) {
+  if (node.IsMap()) {
+    std::vector<std::pair<std::string, YAML::Mark>> seen;
+    for (auto it = node.begin(); it != node.end(); ++it) {
+      const std::string key = it->first.IsScalar() ? it->first.Scalar() : std::string();
+      for (const auto& [k, mark] : seen)
+        if (!key.empty() && k == key) return DuplicateKey{key, it->first.Mark().line + 1, mark.line + 1};
+      seen.emplace_back(key, it->first.Mark());
+      if (auto d = find_duplicate_key(it->second)) return d;
+    }
+  } else if (node.IsSequence()) {
+    for (const YAML::Node& item : node)
+      if (auto d = find_duplicate_key(item)) return d;
+  }
+  return std::nullopt;
+}
+
+std::string DuplicateKey::describe() const {
+  return key + ": given twice (first at line " + std::to_string(first_line) + "): which one is meant?";
 }
 
 std::string ConfigSection::choice(const std::string& key, const std::string& fallback,

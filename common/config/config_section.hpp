@@ -16,6 +16,7 @@
 
 #include <limits>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -54,6 +55,10 @@ class ConfigSection {
   long long integer(const std::string& key, long long fallback, long long min, long long max);
   bool flag(const std::string& key, bool fallback);
   std::string text(const std::string& key, const std::string& fallback);
+  // An LCM channel name: 1-63 printable characters, no spaces (LCM drops longer names without a word).
+  std::string channel(const std::string& key, const std::string& fallback);
+  // A dotted IPv4 multicast address (224.0.0.0/4) and nothing else (it is spliced into an LCM URL).
+  std::string ipv4_multicast_group(const std::string& key, const std::string& fallback);
   // One of `allowed`; the error lists them.
   std::string choice(const std::string& key, const std::string& fallback, const std::vector<std::string>& allowed);
   // Exactly `count` numbers, each in `range`.
@@ -84,6 +89,15 @@ class ConfigSection {
 
   std::shared_ptr<State> state_;
 };
+
+// A key given twice in one map (yaml-cpp keeps the first silently), searched recursively; ConfigSection::load
+// and the KF-GINS configuration reader refuse such a file naming both lines.
+struct DuplicateKey {
+  std::string key;
+  long line = 0, first_line = 0;  // 1-based
+  std::string describe() const;   // "imupath: given twice (first at line 2): which one is meant?"
+};
+std::optional<DuplicateKey> find_duplicate_key(const YAML::Node& node);
 
 // The entry of `candidates` closest to `word` by edit distance, "" when none is close enough to be a typo.
 std::string nearest_name(const std::string& word, const std::vector<std::string>& candidates);

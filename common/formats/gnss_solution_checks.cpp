@@ -1,6 +1,7 @@
 #include "common/formats/gnss_solution_checks.hpp"
 
 #include <cmath>
+#include <Eigen/Eigenvalues>
 #include <numbers>
 
 namespace ldv::gnss {
@@ -32,16 +33,28 @@ std::optional<std::string> implausibility(const GnssSolution& s) {
   if (!std::isfinite(f.pos.h_m) || f.pos.h_m < kMinPlausibleHeight_m || f.pos.h_m > kMaxPlausibleHeight_m)
     return "height " + num(f.pos.h_m) + " m not in [" + num(kMinPlausibleHeight_m) + ", " + num(kMaxPlausibleHeight_m) +
            "]";
-  if (!s.pos_cov_ned_m2.allFinite() || !(s.pos_cov_ned_m2.diagonal().array() > 0.0).all())
+  if (!s.pos_cov_ned_m2.allFinite() || !(s.pos_cov_ned_m2.diagonal().array() > 0.0).all() ||
+      !(s.pos_cov_ned_m2.diagonal().array() <= kMaxPlausiblePositionVariance_m2).all())
     return "position variances (" + num(s.pos_cov_ned_m2(0, 0)) + ", " + num(s.pos_cov_ned_m2(1, 1)) + ", " +
-           num(s.pos_cov_ned_m2(2, 2)) + ") m^2 not positive and finite";
+           num(s.pos_cov_ned_m2(2, 2)) + ") m^2 not positive, finite and below " + num(kMaxPlausiblePositionVariance_m2);
+  // Positive-definite after scaling by the diagonal (a correlation matrix): a variance of 1e-300 beside 1 m^2
+  // must not fail for rounding alone.
+  {
+    const Vec3 inv_std = s.pos_cov_ned_m2.diagonal().cwiseSqrt().cwiseInverse();
+    const Mat3 corr = inv_std.asDiagonal() * s.pos_cov_ned_m2 * inv_std.asDiagonal();
+    if (!corr.allFinite() || (corr - corr.transpose()).cwiseAbs().maxCoeff() > 1e-6 ||
+        Eigen::SelfAdjointEigenSolver<Mat3>(corr).eigenvalues().minCoeff() <= 0.0)
+      return "position covariance not symmetric positive-definite";
+  }
   if (!f.pos_std_ned_m.allFinite() || !(f.pos_std_ned_m.array() > 0.0).all())
     return "position std not positive and finite";
   if (f.has_velocity) {
     if (!f.vel_n_mps.allFinite() || f.vel_n_mps.norm() > kMaxPlausibleSpeed_mps)
       return "velocity " + num(f.vel_n_mps.norm()) + " m/s not finite below " + num(kMaxPlausibleSpeed_mps);
-    if (!f.vel_std_n_mps.allFinite() || (f.vel_std_n_mps.array() < 0.0).any())
-      return "velocity std not finite and >= 0";
+    if (!f.vel_std_n_mps.allFinite() || !(f.vel_std_n_mps.array() >= 0.0).all() ||
+        !(f.vel_std_n_mps.array() < kMaxPlausibleSpeed_mps).all())
+      return "velocity std (" + num(f.vel_std_n_mps[0]) + ", " + num(f.vel_std_n_mps[1]) + ", " +
+             num(f.vel_std_n_mps[2]) + ") m/s not finite in [0, " + num(kMaxPlausibleSpeed_mps) + ")";
   }
   if (!std::isfinite(f.age_s) || !std::isfinite(f.ratio) || f.num_sats < 0)
     return "age, ratio or satellite count not finite and >= 0";

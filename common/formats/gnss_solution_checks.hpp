@@ -17,6 +17,13 @@ constexpr int kMaxPlausibleGpsWeek = 8191;
 constexpr double kMinPlausibleHeight_m = -1000.0;
 constexpr double kMaxPlausibleHeight_m = 100000.0;
 constexpr double kMaxPlausibleSpeed_mps = 1000.0;
+// The best a receiver can know its antenna's place and speed: the phase centre alone wanders by millimetres.
+// A smaller std (a receiver's 1e-150 m) is held to this in the filter, never trusted to the last bit (the
+// covariance loses its positive-definiteness after such an update).
+constexpr double kMinCredibleGnssPositionStd_m = 1e-3;
+constexpr double kMinCredibleGnssVelocityStd_mps = 1e-3;
+// Variances beyond this say nothing (a 1e6 m std): no receiver means it as a position.
+constexpr double kMaxPlausiblePositionVariance_m2 = 1e12;
 
 // Why `s` cannot be a real solution ("time of week 3085367 s not in [0, 604800)"), nullopt when plausible.
 std::optional<std::string> implausibility(const GnssSolution& s);

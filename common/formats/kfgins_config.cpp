@@ -1,6 +1,8 @@
 #include "common/formats/kfgins_config.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 
 #include <filesystem>
 #include <fstream>
@@ -33,37 +35,66 @@ struct Reader {
     const YAML::Node n = at(key);
     return n.IsDefined() && !n.IsNull();
   }
-  double number(const std::string& key) const {
+  // A finite number in [lo, hi] (unit: how the user writes it, for the message).
+  double number(const std::string& key, double lo = -1e300, double hi = 1e300, const char* unit = "") const {
     const YAML::Node n = at(key);
     if (!n.IsDefined()) fail(key, n, "a number (key is missing)");
+    double v = 0.0;
     try {
-      return n.as<double>();
+      if (!n.IsScalar()) throw YAML::BadConversion(n.Mark());
+      v = n.as<double>();
     } catch (const YAML::Exception&) {
-      fail(key, n, "a number");
+      fail(key, n, "a number" + range_text(lo, hi, unit) + found(n));
     }
+    if (!std::isfinite(v) || v < lo || v > hi) fail(key, n, "a finite number" + range_text(lo, hi, unit) + found(n));
+    return v;
+  }
+  static std::string range_text(double lo, double hi, const char* unit) {
+    if (lo <= -1e300 && hi >= 1e300) return "";
+    char b[96];
+    std::snprintf(b, sizeof b, " in [%g, %g]%s%s", lo, hi, *unit ? " " : "", unit);
+    return b;
+  }
+  static std::string found(const YAML::Node& n) {
+    return ", found '" + (n.IsScalar() ? n.Scalar() : std::string(n.IsSequence() ? "a list" : "a map")) + "'";
   }
   std::string text(const std::string& key) const {
     const YAML::Node n = at(key);
     if (!n.IsDefined() || !n.IsScalar()) fail(key, n, "a path string" + std::string(n.IsDefined() ? "" : " (key is missing)"));
     return n.as<std::string>();
   }
-  Vec3 vec3(const std::string& key) const {
+  // Three finite numbers, element i in [lo[i], hi[i]].
+  Vec3 vec3(const std::string& key, const Vec3& lo = Vec3::Constant(-1e300), const Vec3& hi = Vec3::Constant(1e300),
+            const char* unit = "") const {
     const YAML::Node n = at(key);
     if (!n.IsDefined()) fail(key, n, "a list of 3 numbers (key is missing)");
     if (!n.IsSequence() || n.size() != 3) fail(key, n, "a list of 3 numbers");
     Vec3 v;
     for (int i = 0; i < 3; ++i) {
+      const std::string element = " (element " + std::to_string(i + 1) + " is '" + (n[i].IsScalar() ? n[i].Scalar() : "?") + "')";
       try {
+        if (!n[i].IsScalar()) throw YAML::BadConversion(n[i].Mark());
         v[i] = n[i].as<double>();
       } catch (const YAML::Exception&) {
-        fail(key, n, "a list of 3 numbers (element " + std::to_string(i + 1) + " is not a number)");
+        fail(key, n, "a list of 3 numbers" + element);
       }
+      if (!std::isfinite(v[i]) || v[i] < lo[i] || v[i] > hi[i])
+        fail(key, n, "a list of 3 finite numbers, element " + std::to_string(i + 1) + range_text(lo[i], hi[i], unit) +
+                         element);
     }
     return v;
   }
-  std::optional<Vec3> optional_vec3(const std::string& key) const {
+  Vec3 vec3(const std::string& key, double lo, double hi, const char* unit) const {
+    return vec3(key, Vec3::Constant(lo), Vec3::Constant(hi), unit);
+  }
+  std::optional<Vec3> optional_vec3(const std::string& key, double lo = -1e300, double hi = 1e300,
+                                    const char* unit = "") const {
     if (!has(key)) return std::nullopt;
-    return vec3(key);
+    return vec3(key, lo, hi, unit);
+  }
+  std::optional<Vec3> optional_vec3(const std::string& key, const Vec3& lo, const Vec3& hi, const char* unit) const {
+    if (!has(key)) return std::nullopt;
+    return vec3(key, lo, hi, unit);
   }
 };
 
@@ -107,6 +138,74 @@ const std::vector<std::string> kLdvKeys = {
     // written by `ldv sim` (its truth and settings, for the record)
     "simulator", "declared_effects_si", "gnss_latency_s"};
 
+// The numbers of the `ldv:` section, checked at load so a NaN or an absurd value is refused naming the user's
+// key (it reached the estimator as an error about alignment or the initial state, or silently unused every fix).
+// Lists (vectors, per-axis values) take the range per element. Keys not here are text, flags or lists of names.
+struct LdvNumberKey {
+  const char* key;
+  double lo, hi;
+  const char* unit;
+};
+const LdvNumberKey kLdvNumbers[] = {
+    {"cov_period_s", 0.0, 3600.0, "s"},
+    {"gate_probability", 0.5, 1.0 - 1e-12, ""},
+    {"step_confirm_s", 0.0, 3600.0, "s"},
+    {"history_s", 0.0, 600.0, "s"},
+    {"align_speed_mps", 0.0, 1000.0, "m/s"},
+    {"align_hypotheses", 1.0, 360.0, ""},
+    {"gnss_bias_sigma_m", 0.0, 1e4, "m"},
+    {"gnss_bias_tau_s", 1e-3, 1e9, "s"},
+    {"time_offset_s", -10.0, 10.0, "s"},
+    {"moving_bias_gyro_gm_rad_s", 0.0, 100.0, "rad/s"},
+    {"moving_bias_gyro_gm_time_s", 1e-3, 1e9, "s"},
+    {"moving_bias_gyro_rw_rad_s_sqrt_s", 0.0, 100.0, "rad/s/sqrt(s)"},
+    {"moving_bias_gyro_ramp_rad_s2", 0.0, 100.0, "rad/s^2"},
+    {"moving_bias_accel_gm_mps2", 0.0, 2000.0, "m/s^2"},
+    {"moving_bias_accel_gm_time_s", 1e-3, 1e9, "s"},
+    {"moving_bias_accel_rw_mps2_sqrt_s", 0.0, 2000.0, "m/s^2/sqrt(s)"},
+    {"moving_bias_accel_ramp_mps3", 0.0, 2000.0, "m/s^3"},
+    {"gyro_quantization_rad", 0.0, 0.1, "rad"},
+    {"vehicle_mounting_deg", -360.0, 360.0, "deg"},
+    {"nhc_std_mps", 0.0, 100.0, "m/s"},
+    {"odometer_std_mps", 0.0, 100.0, "m/s"},
+    {"odometer_lever_arm_m", -100.0, 100.0, "m"},
+    {"odometer_scale", -0.9, 10.0, ""},
+    {"week", 1042.0, 8191.0, "(a GPS week)"},
+    {"pos_height_offset_m", -1e4, 1e4, "m"},
+    {"float_std_min_m", 0.0, 1e4, "m"},
+    {"imu_time_shift_s", -10.0, 10.0, "s"},
+    {"gnss_latency_s", 0.0, 10.0, "s"},
+};
+
+void check_ldv_numbers(const std::string& path, const YAML::Node& ldv) {
+  if (!ldv || !ldv.IsMap()) return;
+  for (const LdvNumberKey& k : kLdvNumbers) {
+    const YAML::Node n = ldv[k.key];
+    if (!n || n.IsNull()) continue;
+    const auto refuse = [&](const YAML::Node& at, const std::string& found) {
+      char range[160];
+      std::snprintf(range, sizeof range, "a finite number in [%g, %g]%s%s", k.lo, k.hi, *k.unit ? " " : "", k.unit);
+      throw InputError(path, at.Mark().line + 1,
+                       std::string("key 'ldv.") + k.key + "': expected " + range +
+                           (n.IsSequence() ? " (or a list of them)" : "") + ", found '" + found + "'");
+    };
+    const auto check = [&](const YAML::Node& v) {
+      if (!v.IsScalar()) refuse(v, "a list or map");
+      double x = 0.0;
+      try {
+        x = v.as<double>();
+      } catch (const YAML::Exception&) {
+        refuse(v, v.Scalar());
+      }
+      if (!std::isfinite(x) || x < k.lo || x > k.hi) refuse(v, v.Scalar());
+    };
+    if (n.IsSequence())
+      for (const YAML::Node& v : n) check(v);
+    else
+      check(n);
+  }
+}
+
 void refuse_unknown_in(const std::string& path, const YAML::Node& map, const std::vector<std::string>& known,
                        const std::string& prefix) {
   if (!map.IsMap()) return;
@@ -141,47 +240,65 @@ KfGinsConfig load_kfgins_config(const std::string& path) {
     throw InputError(path, e.mark.line + 1, "YAML syntax error: " + e.msg);
   }
   if (!root.IsMap()) throw InputError(path, 0, "expected a YAML mapping of KF-GINS keys");
+  if (const auto d = config::find_duplicate_key(root)) throw InputError(path, d->line, d->describe());
+  for (const char* section : {"imunoise", "ldv"})
+    if (const YAML::Node n = root[section]; n && !n.IsNull() && !n.IsMap())
+      throw InputError(path, n.Mark().line + 1,
+                       std::string("key '") + section + "': expected a section of keys (a map), found " +
+                           (n.IsScalar() ? "'" + n.Scalar() + "'" : std::string("a list")));
   refuse_unknown_keys(path, root);
+  check_ldv_numbers(path, root["ldv"]);
   const Reader r{path, root};
   KfGinsConfig c;
   c.config_path = path;
   c.imu_path = resolve_data_path(r.text("imupath"), path);
   c.gnss_path = resolve_data_path(r.text("gnsspath"), path);
   c.output_path = r.has("outputpath") ? resolve_data_path(r.text("outputpath"), path) : ".";
-  if (r.has("imudatalen")) c.imu_data_columns = static_cast<int>(r.number("imudatalen"));
-  if (r.has("imudatarate")) c.imu_rate_hz = r.number("imudatarate");
+  if (r.has("imudatalen")) c.imu_data_columns = static_cast<int>(r.number("imudatalen", 7, 64, "columns"));
+  if (r.has("imudatarate")) c.imu_rate_hz = r.number("imudatarate", 1e-3, 1e5, "Hz");
   if (c.imu_rate_hz <= 0) r.fail("imudatarate", r.at("imudatarate"), "a positive rate [Hz]");
-  if (r.has("starttime")) c.start_time_s = r.number("starttime");
-  if (r.has("endtime")) c.end_time_s = r.number("endtime");
+  // Seconds of week, going on past 604800 after a rollover (KF-GINS); endtime -1: to the end.
+  constexpr double kMaxTime_s = 1e10;
+  if (r.has("starttime")) c.start_time_s = r.number("starttime", 0.0, kMaxTime_s, "s");
+  if (r.has("endtime")) c.end_time_s = r.number("endtime", -1.0, kMaxTime_s, "s");
 
-  if (auto p = r.optional_vec3("initpos")) c.init_pos = Geodetic{(*p)[0] * kDegToRad, (*p)[1] * kDegToRad, (*p)[2]};
-  c.init_vel_n_mps = r.optional_vec3("initvel");
-  if (auto a = r.optional_vec3("initatt")) c.init_rpy_rad = Vec3((*a)[0], (*a)[1], wrap_pi((*a)[2] * kDegToRad) * kRadToDeg) * kDegToRad;
+  if (auto p = r.optional_vec3("initpos", Vec3(-90, -360, -1000), Vec3(90, 360, 100000), "(deg, deg, m)"))
+    c.init_pos = Geodetic{(*p)[0] * kDegToRad, wrap_pi((*p)[1] * kDegToRad), (*p)[2]};
+  c.init_vel_n_mps = r.optional_vec3("initvel", -1000, 1000, "m/s");
+  if (auto a = r.optional_vec3("initatt", Vec3(-180, -90, -360), Vec3(180, 90, 360), "deg"))
+    c.init_rpy_rad = Vec3((*a)[0], (*a)[1], wrap_pi((*a)[2] * kDegToRad) * kRadToDeg) * kDegToRad;
 
   const double deg_per_h = kDegToRad / 3600.0, mgal = 1e-5, ppm = 1e-6;
-  if (auto v = r.optional_vec3("initgyrbias")) c.init_gyro_bias_rad_s = *v * deg_per_h;
-  if (auto v = r.optional_vec3("initaccbias")) c.init_accel_bias_mps2 = *v * mgal;
-  if (auto v = r.optional_vec3("initgyrscale")) c.init_gyro_scale = *v * ppm;
-  if (auto v = r.optional_vec3("initaccscale")) c.init_accel_scale = *v * ppm;
-  if (auto v = r.optional_vec3("initposstd")) c.init_pos_std_ned_m = *v;
-  if (auto v = r.optional_vec3("initvelstd")) c.init_vel_std_n_mps = *v;
-  if (auto v = r.optional_vec3("initattstd")) c.init_att_std_rad = *v * kDegToRad;
-  if (auto v = r.optional_vec3("initbgstd")) c.init_gyro_bias_std_rad_s = *v * deg_per_h;
-  if (auto v = r.optional_vec3("initbastd")) c.init_accel_bias_std_mps2 = *v * mgal;
-  if (auto v = r.optional_vec3("initsgstd")) c.init_gyro_scale_std = *v * ppm;
-  if (auto v = r.optional_vec3("initsastd")) c.init_accel_scale_std = *v * ppm;
+  // Beyond these no sensor measures anything: a gyro bias of 100 rad/s, an accelerometer bias of 2000 m/s^2, a
+  // scale error of 100 %, a noise density that hides a full turn in a second.
+  constexpr double kMaxGyroBias_deg_h = 2.0e7, kMaxAccelBias_mgal = 2.0e8, kMaxScale_ppm = 1e6;
+  if (auto v = r.optional_vec3("initgyrbias", -kMaxGyroBias_deg_h, kMaxGyroBias_deg_h, "deg/h"))
+    c.init_gyro_bias_rad_s = *v * deg_per_h;
+  if (auto v = r.optional_vec3("initaccbias", -kMaxAccelBias_mgal, kMaxAccelBias_mgal, "mGal"))
+    c.init_accel_bias_mps2 = *v * mgal;
+  if (auto v = r.optional_vec3("initgyrscale", -kMaxScale_ppm, kMaxScale_ppm, "ppm")) c.init_gyro_scale = *v * ppm;
+  if (auto v = r.optional_vec3("initaccscale", -kMaxScale_ppm, kMaxScale_ppm, "ppm")) c.init_accel_scale = *v * ppm;
+  if (auto v = r.optional_vec3("initposstd", 0, 1e7, "m")) c.init_pos_std_ned_m = *v;
+  if (auto v = r.optional_vec3("initvelstd", 0, 1000, "m/s")) c.init_vel_std_n_mps = *v;
+  if (auto v = r.optional_vec3("initattstd", 0, 180, "deg")) c.init_att_std_rad = *v * kDegToRad;
+  if (auto v = r.optional_vec3("initbgstd", 0, kMaxGyroBias_deg_h, "deg/h")) c.init_gyro_bias_std_rad_s = *v * deg_per_h;
+  if (auto v = r.optional_vec3("initbastd", 0, kMaxAccelBias_mgal, "mGal")) c.init_accel_bias_std_mps2 = *v * mgal;
+  if (auto v = r.optional_vec3("initsgstd", 0, kMaxScale_ppm, "ppm")) c.init_gyro_scale_std = *v * ppm;
+  if (auto v = r.optional_vec3("initsastd", 0, kMaxScale_ppm, "ppm")) c.init_accel_scale_std = *v * ppm;
 
   if (!r.has("imunoise")) throw InputError(path, 0, "key 'imunoise': expected a section with arw, vrw, gbstd, abstd, gsstd, asstd, corrtime");
   auto& n = c.imu_noise;
-  n.arw_rad_per_sqrt_s = r.vec3("imunoise.arw") * (kDegToRad / 60.0);
-  n.vrw_mps_per_sqrt_s = r.vec3("imunoise.vrw") / 60.0;
-  n.gyro_bias_std_rad_s = r.vec3("imunoise.gbstd") * deg_per_h;
-  n.accel_bias_std_mps2 = r.vec3("imunoise.abstd") * mgal;
-  n.gyro_scale_std = r.has("imunoise.gsstd") ? Vec3(r.vec3("imunoise.gsstd") * ppm) : Vec3(Vec3::Zero());
-  n.accel_scale_std = r.has("imunoise.asstd") ? Vec3(r.vec3("imunoise.asstd") * ppm) : Vec3(Vec3::Zero());
-  n.corr_time_s = r.number("imunoise.corrtime") * 3600.0;
+  n.arw_rad_per_sqrt_s = r.vec3("imunoise.arw", 0, 1e5, "deg/sqrt(h)") * (kDegToRad / 60.0);
+  n.vrw_mps_per_sqrt_s = r.vec3("imunoise.vrw", 0, 1e5, "m/s/sqrt(h)") / 60.0;
+  n.gyro_bias_std_rad_s = r.vec3("imunoise.gbstd", 0, kMaxGyroBias_deg_h, "deg/h") * deg_per_h;
+  n.accel_bias_std_mps2 = r.vec3("imunoise.abstd", 0, kMaxAccelBias_mgal, "mGal") * mgal;
+  n.gyro_scale_std = r.has("imunoise.gsstd") ? Vec3(r.vec3("imunoise.gsstd", 0, kMaxScale_ppm, "ppm") * ppm)
+                                              : Vec3(Vec3::Zero());
+  n.accel_scale_std = r.has("imunoise.asstd") ? Vec3(r.vec3("imunoise.asstd", 0, kMaxScale_ppm, "ppm") * ppm)
+                                               : Vec3(Vec3::Zero());
+  n.corr_time_s = r.number("imunoise.corrtime", 0, 1e6, "h") * 3600.0;
   if (n.corr_time_s <= 0) r.fail("imunoise.corrtime", r.at("imunoise.corrtime"), "a positive correlation time [h]");
-  c.antenna_lever_b_m = r.has("antlever") ? r.vec3("antlever") : Vec3::Zero();
+  c.antenna_lever_b_m = r.has("antlever") ? r.vec3("antlever", -100, 100, "m") : Vec3::Zero();
   if (root["ldv"]) c.ldv = root["ldv"];
   return c;
 }

@@ -34,6 +34,37 @@ struct ImuRow {
   long line;
 };
 
+// Digits after the decimal point in the line's last field (-1 without a point): a last line that ends without a
+// newline and with fewer of them than the line before was cut while written ("... -4." of "-4.123456789").
+int decimals_of_last_field(std::string_view text) {
+  size_t end = text.size();
+  while (end > 0 && (text[end - 1] == ' ' || text[end - 1] == '\t' || text[end - 1] == '\r' || text[end - 1] == ','))
+    --end;
+  size_t begin = end;
+  while (begin > 0 && text[begin - 1] != ' ' && text[begin - 1] != '\t' && text[begin - 1] != ',') --begin;
+  const std::string_view field = text.substr(begin, end - begin);
+  const size_t dot = field.find('.');
+  if (dot == std::string_view::npos) return -1;
+  size_t digits = 0;
+  while (dot + 1 + digits < field.size() && field[dot + 1 + digits] >= '0' && field[dot + 1 + digits] <= '9') ++digits;
+  return static_cast<int>(digits);
+}
+
+// The last line, unterminated, with a shorter last field than the line before: cut while being written.
+bool cut_last_line(const TextFileLines& lines, std::string_view text, int previous_decimals) {
+  return !lines.last_line_terminated() && previous_decimals > 0 && decimals_of_last_field(text) < previous_decimals;
+}
+
+// A time behind the record before: was the record before the corrupted one (one bad digit carried it ahead of
+// both neighbours, farther ahead of this record than this one is after the record before it), or is this one
+// stamped back? times: the kept records' times, t_s: this record's.
+bool previous_jumped_ahead(double before_previous_s, double previous_s, double t_s) {
+  return t_s > before_previous_s && previous_s - t_s > t_s - before_previous_s;
+}
+
+// Two samples closer than this are one sample twice (no IMU samples above 100 kHz; a .nav prints 1e-6 s).
+constexpr double kMinImuInterval_s = 1e-5;
+
 }  // namespace
 
 std::vector<ImuIncrement> read_kfgins_imu(const std::string& path, ImuReadReport* report, const ImuReadOptions& opt) {
@@ -48,6 +79,7 @@ std::vector<ImuIncrement> read_kfgins_imu(const std::string& path, ImuReadReport
   double v[64];
   FieldError err;
   std::string_view text;
+  int previous_decimals = -1;
   while (lines.next(text)) {
     const long line = lines.line_number();
     const int n = scan_numeric_line(text, v, 64, &err);
@@ -74,20 +106,29 @@ std::vector<ImuIncrement> read_kfgins_imu(const std::string& path, ImuReadReport
                       "an increment beyond any IMU (|dtheta| <= 100 rad, |dvel| <= 1e4 m/s per sample)");
       continue;
     }
+    if (cut_last_line(lines, text, previous_decimals)) {
+      rep.dropped.add(DropReason::kMalformed, path, line,
+                      "the last line ends without a newline and its last field is shorter than the line before's: "
+                      "cut while written");
+      continue;
+    }
+    previous_decimals = decimals_of_last_field(text);
     ImuRow r{{}, line};
     r.s.t_s = v[0];
     r.s.dtheta_b_rad = Vec3(v[1], v[2], v[3]);
     r.s.dvel_b_mps = Vec3(v[4], v[5], v[6]);
     if (!rows.empty()) {
       const double t_last = rows.back().s.t_s;
-      if (r.s.t_s == t_last) {
-        rep.dropped.add(DropReason::kRepeated, path, line, "time repeats: " + seconds(r.s.t_s));
+      if (std::abs(r.s.t_s - t_last) < kMinImuInterval_s) {
+        rep.dropped.add(DropReason::kRepeated, path, line,
+                        "time repeats (within 10 us of the line before): " + seconds(r.s.t_s));
         continue;
       }
       if (r.s.t_s < t_last) {
         // The record before jumped ahead of both neighbours: that one was corrupted, this one continues the run.
         // (One corrupted digit of a time stamp would otherwise drop every record up to the corrupted time.)
-        const bool last_jumped = rows.size() >= 2 && r.s.t_s > rows[rows.size() - 2].s.t_s;
+        const bool last_jumped =
+            rows.size() >= 2 && previous_jumped_ahead(rows[rows.size() - 2].s.t_s, t_last, r.s.t_s);
         if (last_jumped) {
           rep.dropped.add(DropReason::kTimeJump, path, rows.back().line,
                           "time " + seconds(t_last) + " is ahead of both neighbours (" +
@@ -163,6 +204,8 @@ std::vector<GnssFix> read_kfgins_gnss(const std::string& path, GnssReadReport* r
   std::vector<GnssFix> out;
   GnssReadReport rep;
   TextFileLines lines(path);
+  std::vector<long> line_of;  // file line of each kept fix
+  int previous_decimals = -1;
   double v[13];
   FieldError err;
   std::string_view text;
@@ -203,11 +246,28 @@ std::vector<GnssFix> read_kfgins_gnss(const std::string& path, GnssReadReport* r
     }
     if (!out.empty() && g.t_s <= out.back().t_s) {
       const bool same = g.t_s == out.back().t_s;
-      rep.dropped.add(same ? DropReason::kRepeated : DropReason::kTimeBackwards, path, line,
-                      "time does not increase: " + seconds(g.t_s) + " after " + seconds(out.back().t_s));
+      if (!same && out.size() >= 2 && previous_jumped_ahead(out[out.size() - 2].t_s, out.back().t_s, g.t_s)) {
+        // One bad digit carried the record before ahead of both neighbours: that one is dropped, as for the IMU.
+        rep.dropped.add(DropReason::kTimeJump, path, line_of.back(),
+                        "time " + seconds(out.back().t_s) + " is ahead of both neighbours (" +
+                            seconds(out[out.size() - 2].t_s) + ", " + seconds(g.t_s) + ")");
+        out.pop_back();
+        line_of.pop_back();
+      } else {
+        rep.dropped.add(same ? DropReason::kRepeated : DropReason::kTimeBackwards, path, line,
+                        "time does not increase: " + seconds(g.t_s) + " after " + seconds(out.back().t_s));
+        continue;
+      }
+    }
+    if (cut_last_line(lines, text, previous_decimals)) {
+      rep.dropped.add(DropReason::kMalformed, path, line,
+                      "the last line ends without a newline and its last field is shorter than the line before's: "
+                      "cut while written");
       continue;
     }
+    previous_decimals = decimals_of_last_field(text);
     out.push_back(g);
+    line_of.push_back(line);
   }
   check_dropped(path, rep.dropped, static_cast<long>(out.size()) + rep.dropped.total(), 0.10, "");
   if (out.empty()) throw InputError(path, 0, "no GNSS solutions (expected rows: sow lat lon h sN sE sD)");

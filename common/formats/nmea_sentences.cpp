@@ -71,7 +71,13 @@ std::optional<std::vector<std::string_view>> fields_of(std::string_view sentence
   return fields;
 }
 
-bool valid_date(const UtcDate& d) { return d.month >= 1 && d.month <= 12 && d.day >= 1 && d.day <= 31; }
+// A day that exists in the Gregorian calendar (no 31 February, 29 February in leap years only).
+bool valid_date(const UtcDate& d) {
+  if (d.month < 1 || d.month > 12 || d.day < 1) return false;
+  static constexpr int kDaysInMonth[12] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+  const bool leap = (d.year % 4 == 0 && d.year % 100 != 0) || d.year % 400 == 0;
+  return d.day <= kDaysInMonth[d.month - 1] + (d.month == 2 && leap ? 1 : 0);
+}
 }  // namespace
 
 std::optional<NmeaAddress> nmea_address(std::string_view sentence) {

@@ -1,5 +1,7 @@
 #include "common/formats/rtklib_solution.hpp"
 
+#include "common/formats/gnss_solution_checks.hpp"
+
 #include "common/io/text_file_lines.hpp"
 
 #include <charconv>
@@ -60,7 +62,9 @@ std::optional<GpsTime> parse_time(std::string_view a, std::string_view b) {
     char tail = 0;
     if (std::sscanf(date.c_str(), "%d/%d/%d%c", &y, &mo, &d, &tail) != 3) return std::nullopt;
     if (std::sscanf(clock.c_str(), "%d:%d:%lf%c", &h, &mi, &s, &tail) != 3) return std::nullopt;
-    if (mo < 1 || mo > 12 || d < 1 || d > 31 || h < 0 || h > 23 || mi < 0 || mi > 59 || s < 0 || s >= 61)
+    // Years a GNSS solution can carry (and no int overflow in the week count of a year 2147483647).
+    if (y < 1980 || y > 2200 || mo < 1 || mo > 12 || d < 1 || d > 31 || h < 0 || h > 23 || mi < 0 || mi > 59 ||
+        s < 0 || s >= 61)
       return std::nullopt;
     // Midnight first, then the clock time: keeps sub-microsecond resolution in sow_s.
     GpsTime t = gps_from_calendar({y, mo, d, 0, 0, 0.0});
@@ -68,7 +72,10 @@ std::optional<GpsTime> parse_time(std::string_view a, std::string_view b) {
     return t;
   }
   const auto week = number(a), tow = number(b);
-  if (!week || !tow || *week < 0 || *week != std::floor(*week) || *tow < 0 || *tow >= kSecondsPerWeek + 1)
+  // A week beyond any int is refused before the cast (99999999999 overflowed it); gnss::implausibility judges
+  // the rest.
+  if (!week || !tow || *week < 0 || *week > 1e8 || *week != std::floor(*week) || *tow < 0 ||
+      *tow >= kSecondsPerWeek + 1)
     return std::nullopt;
   return GpsTime{static_cast<int>(*week), *tow};
 }
@@ -222,7 +229,11 @@ RtklibSolutionParser::LineKind RtklibSolutionParser::parse_line(std::string_view
 
 std::string RtklibReadReport::summary() const {
   std::string s = std::to_string(solutions) + " solutions";
-  for (const auto& [why, count] : malformed_by_reason) s += ", " + std::to_string(count) + " malformed (" + why + ")";
+  for (const auto& [why, count] : malformed_by_reason) {
+    const auto line = first_line_by_reason.find(why);
+    s += ", " + std::to_string(count) + " malformed (" + why +
+         (line != first_line_by_reason.end() ? ", first at line " + std::to_string(line->second) : std::string()) + ")";
+  }
   return s;
 }
 
@@ -244,14 +255,33 @@ std::vector<GnssSolution> read_rtklib_pos(const std::string& path, RtklibParserO
     if (kind == RtklibSolutionParser::LineKind::kMalformed) {
       if (rep.malformed() < kLoggedLines) spdlog::warn("{}:{}: RTKLIB solution line skipped: {}", path, line_no, why);
       if (rep.malformed() == 0) first_malformed_line = line_no, first_why = why;
+      if (!rep.first_line_by_reason.count(why)) rep.first_line_by_reason[why] = line_no;
       ++rep.malformed_by_reason[why];
     }
-    if (kind == RtklibSolutionParser::LineKind::kSolution) out.push_back(s);
+    // What no receiver writes (a week of 1980, a height of 1e300 m): the checks of every decoder's output.
+    if (kind == RtklibSolutionParser::LineKind::kSolution) {
+      if (const auto bad = implausibility(s)) {
+        why = "implausible: " + *bad;
+        if (rep.malformed() < kLoggedLines) spdlog::warn("{}:{}: RTKLIB solution line skipped: {}", path, line_no, why);
+        if (rep.malformed() == 0) first_malformed_line = line_no, first_why = why;
+        if (!rep.first_line_by_reason.count(why)) rep.first_line_by_reason[why] = line_no;
+        ++rep.malformed_by_reason[why];
+        continue;
+      }
+      out.push_back(s);
+    }
   }
   rep.solutions = static_cast<long>(out.size());
   if (rep.malformed() > kLoggedLines) spdlog::warn("{}: {}", path, rep.summary());
   if (out.empty() && rep.malformed() > 0)
     throw InputError(path, first_malformed_line, "RTKLIB solution line: " + first_why + "; no usable solution (" + rep.summary() + ")");
+  // As the KF-GINS readers: more than 10 % of the solution lines malformed is a wrong file, not noise to count.
+  const long lines_with_data = rep.solutions + rep.malformed();
+  if (static_cast<double>(rep.malformed()) > kMaxMalformedFraction * static_cast<double>(lines_with_data))
+    throw InputError(path, first_malformed_line,
+                     "RTKLIB solution line: " + first_why + "; " + std::to_string(rep.malformed()) + " of " +
+                         std::to_string(lines_with_data) + " solution lines malformed (more than 10 %): " +
+                         rep.summary());
   if (report) *report = rep;
   return out;
 }

@@ -50,6 +50,7 @@ class RtklibSolutionParser {
 struct RtklibReadReport {
   long solutions = 0;
   std::map<std::string, long> malformed_by_reason;
+  std::map<std::string, long> first_line_by_reason;  // 1-based file line of each reason's first
   long malformed() const {
     long n = 0;
     for (const auto& [why, count] : malformed_by_reason) n += count;
@@ -58,8 +59,11 @@ struct RtklibReadReport {
   std::string summary() const;  // "118 solutions, 2 malformed (position sigma not positive)"
 };
 
-// Reads a whole .pos file, in file order. Malformed lines (also non-positive sigmas) are skipped and
-// counted; a file whose lines are all malformed throws InputError naming the first one's line and the counts.
+// Reads a whole .pos file, in file order. Malformed lines (also non-positive sigmas and what
+// gnss::implausibility refuses: a week of 1980, a height of 1e300 m) are skipped and counted; a file whose
+// lines are all malformed, or more than kMaxMalformedFraction of them, throws InputError naming the first
+// one's line and the counts.
+constexpr double kMaxMalformedFraction = 0.10;
 std::vector<GnssSolution> read_rtklib_pos(const std::string& path, RtklibParserOptions options = {},
                                           RtklibReadReport* report = nullptr);
 

@@ -1,6 +1,7 @@
 #include "common/formats/rtklib_time_tag.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 
@@ -23,6 +24,11 @@ RtklibTimeTag read_rtklib_time_tag(const std::string& path) {
   std::memcpy(&tick_f, bytes.data() + kHeader, 4);
   std::memcpy(&time_s, bytes.data() + kHeader + 4, 4);
   std::memcpy(&fraction, bytes.data() + kHeader + 8, 8);
+  // RTKLIB writes the fraction of the start second (stream.c: time.sec): a NaN or a value outside [0, 1) is a
+  // corrupted header, and its NaN would make every IMU time NaN far from here.
+  if (!std::isfinite(fraction) || fraction < 0.0 || fraction >= 1.0)
+    throw InputError(path, 0, "time-tag header: the start time's fraction of a second (bytes 68-75) is " +
+                                  std::to_string(fraction) + ", expected a number in [0, 1)");
   RtklibTimeTag tag;
   tag.start_gps_s = static_cast<double>(time_s) - kGpsEpochInUnixSeconds + fraction;
   for (size_t off = kFixed; off + 8 <= bytes.size(); off += 8) {

@@ -1,6 +1,7 @@
 #pragma once
 // GPS time (GPST, no leap seconds) as week + seconds of week, and conversions to the calendar
 // labels RTKLIB prints (GPST) and to the Unix-style seconds count used by RTKLIB tag files.
+#include <cmath>
 #include <string>
 
 namespace ldv {
@@ -15,6 +16,33 @@ struct GpsTime {
 
   double total_seconds() const { return week * kSecondsPerWeek + sow_s; }
   static GpsTime from_total_seconds(double s);
+};
+
+// GPS time as one continuous count of seconds from the start of a reference week (the first week a stream
+// showed): seconds of week that go on past 604800 after a rollover, as the offline readers and the filter
+// use them (the filter's epochs are seconds, not week + seconds). The reference is fixed by the first call.
+class ContinuousGpsTime {
+ public:
+  double seconds(int week, double sow_s) {
+    if (!has_reference_) {
+      reference_week_ = week;
+      has_reference_ = true;
+    }
+    return (week - reference_week_) * kSecondsPerWeek + sow_s;
+  }
+  // Back to week + seconds of week in [0, 604800).
+  GpsTime week_time(double continuous_s) const {
+    const double weeks = std::floor(continuous_s / kSecondsPerWeek);
+    GpsTime t{reference_week_ + static_cast<int>(weeks), continuous_s - weeks * kSecondsPerWeek};
+    if (t.sow_s >= kSecondsPerWeek) t = {t.week + 1, 0.0};  // rounding of a time just below a week's end
+    return t;
+  }
+  bool has_reference() const { return has_reference_; }
+  int reference_week() const { return reference_week_; }
+
+ private:
+  bool has_reference_ = false;
+  int reference_week_ = 0;
 };
 
 // Calendar date/time in the GPST scale (as RTKLIB .pos files print with "GPST").

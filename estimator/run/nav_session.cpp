@@ -85,6 +85,19 @@ void NavSession::add_imu(const ImuIncrement& raw, int week, double arrival_s) {
     navigate(imu, week);
     return;
   }
+  // A saved state (a restart seconds ago) is newer than a configuration's given one (the run's start): it goes
+  // first, waiting for its fix; the given state is checked only once the saved one cannot be used.
+  if (warm_) {
+    if (try_warm_start(imu)) {
+      navigate(imu, week);
+      return;
+    }
+    if (warm_) {  // still waiting for the first fix
+      imu_queue_.push_back({imu, week, arrival_s});
+      drain_alignment_queue(arrival_s, false);
+      return;
+    }
+  }
   if (o_.given_start && (given_pending_ || imu.t_s - o_.start_time_s > o_.given_start_max_gap_s)) {
     // The data start later than the given state holds: it still holds if the vehicle has not moved.
     given_pending_ = true;
@@ -97,10 +110,6 @@ void NavSession::add_imu(const ImuIncrement& raw, int week, double arrival_s) {
     // The given state holds at the start of the first increment (KF-GINS: at starttime).
     s.t_s = std::max(o_.start_time_s, imu.t_s - imu.dt_s);
     start(s, o_.given_start->second, "given", std::nullopt, false);
-    navigate(imu, week);
-    return;
-  }
-  if (warm_ && try_warm_start(imu)) {
     navigate(imu, week);
     return;
   }

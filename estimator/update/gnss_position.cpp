@@ -1,5 +1,6 @@
 #include "estimator/update/gnss_position.hpp"
 
+#include "common/formats/gnss_solution_checks.hpp"
 #include "common/geo/earth_model.hpp"
 
 namespace ldv::est {
@@ -16,7 +17,7 @@ Measurement gnss_position_measurement(const NavState& s, const LinearizationPoin
   // C_hat l = (I - [phi x]) C l  =>  d/dphi = [(C l) x]
   m.H.middleCols<3>(kAtt) = skew(lever_n);
   add_effect_columns(layout, lp, m);
-  m.R = Mat3(fix.pos_std_ned_m.cwiseAbs2().asDiagonal());
+  m.R = Mat3(fix.pos_std_ned_m.cwiseAbs().cwiseMax(gnss::kMinCredibleGnssPositionStd_m).cwiseAbs2().asDiagonal());
   adjust_effect_noise(layout, m);
   return m;
 }

@@ -1,5 +1,6 @@
 #include "estimator/update/gnss_velocity.hpp"
 
+#include "common/formats/gnss_solution_checks.hpp"
 #include "estimator/update/gyro_coupling.hpp"
 
 namespace ldv::est {
@@ -21,7 +22,7 @@ Measurement gnss_velocity_measurement(const NavState& s, const LinearizationPoin
   m.H.middleCols<3>(kAtt) = skew(rot_n) - skew(lp.omega_in_n_rad_s) * skew(lever_n);
   add_gyro_error_columns(layout, lp, m);  // gyro errors move the antenna (gyro_coupling.hpp)
   add_effect_columns(layout, lp, m);
-  m.R = Mat3(fix.vel_std_n_mps.cwiseAbs2().asDiagonal());
+  m.R = Mat3(fix.vel_std_n_mps.cwiseAbs().cwiseMax(gnss::kMinCredibleGnssVelocityStd_mps).cwiseAbs2().asDiagonal());
   return m;
 }
 

@@ -15,13 +15,14 @@ est::SessionOptions live_session_options(const KfGinsConfig& cfg, const est::Fil
 }
 
 FusionEngine::FusionEngine(const est::SessionOptions& so)
-    : filter_(so.filter), session_(so, filter_, [this](const est::NavFilter& f, int week) {
-        if (epoch_observer_) epoch_observer_(f, week);
+    : filter_(so.filter), session_(so, filter_, [this](const est::NavFilter& f, int reference_week) {
+        if (epoch_observer_) epoch_observer_(f, reference_week);
         if (!out_) return;
         FusionOutput o;
-        o.gps_week = week;
+        const GpsTime t = time_.week_time(f.gnss_time_s());
+        o.gps_week = t.week;
+        o.gps_sow_s = t.sow_s;
         o.state = f.state();
-        o.gps_sow_s = f.gnss_time_s();
         o.std = f.nav_std();
         o.status = f.status();
         o.mode = (o.status & est::kStatusGnssOutage) ? FusionMode::kFreeInertial : FusionMode::kAided;
@@ -29,9 +30,17 @@ FusionEngine::FusionEngine(const est::SessionOptions& so)
       }) {}
 
 void FusionEngine::on_imu(const ImuIncrement& imu, int week, double arrival_s, std::vector<FusionOutput>& out) {
+  ImuIncrement continuous = imu;
+  continuous.t_s = time_.seconds(week, imu.t_s);
   out_ = &out;
-  session_.add_imu(imu, week, arrival_s);
+  session_.add_imu(continuous, time_.reference_week(), arrival_s);
   out_ = nullptr;
+}
+
+void FusionEngine::on_gnss(const GnssFix& fix, int week, double arrival_s) {
+  GnssFix continuous = fix;
+  continuous.t_s = time_.seconds(week, fix.t_s);
+  session_.add_gnss(continuous, arrival_s);
 }
 
 void FusionEngine::on_observation(est::ObservationPtr reading, double arrival_s, std::vector<FusionOutput>& out) {
@@ -50,7 +59,8 @@ bool FusionEngine::wants_odometer() const { return filter_.options().aids.has("o
 void FusionEngine::on_wheel_speed(const ldv_lcm::wheel_speed_t& m, double arrival_s, std::vector<FusionOutput>& out) {
   if (!wants_odometer()) return;
   if (const auto v = odometer_speed_from_message(m))
-    on_observation(std::make_shared<est::OdometerObservation>(m.gps_sow_s, *v), arrival_s, out);
+    on_observation(std::make_shared<est::OdometerObservation>(time_.seconds(m.gps_week, m.gps_sow_s), *v), arrival_s,
+                   out);
 }
 
 void FusionEngine::on_idle(double now_s, std::vector<FusionOutput>& out) {

@@ -8,12 +8,16 @@
 //    whatever the GNSS latency;
 //  - navigation: late readings go to the NavFilter, which re-processes its IMU history, so a fix is
 //    applied at its true epoch;
+//  - GPS time: every reading's week + seconds of week is put on one continuous scale (seconds from the start
+//    of the first week seen), so a week rollover is a step of one IMU interval, not a jump back by a week;
+//    outputs are brought back to week + seconds of week;
 //  - warm start: after a restart, a recent saved state (attitude, velocity) plus the first GNSS fix
 //    restart navigation at once instead of waiting for a static period (NavSession::set_warm_start).
 #include <ldv_lcm/wheel_speed_t.hpp>
 #include <vector>
 
 #include "common/formats/kfgins_config.hpp"
+#include "common/time/gps_time.hpp"
 #include "estimator/filter/nav_filter.hpp"
 #include "estimator/run/nav_session.hpp"
 #include "services/fusion/warm_start.hpp"
@@ -55,9 +59,10 @@ class FusionEngine {
   // What set_warm_start takes: the filter's state now, with the gyro bias it takes out.
   WarmState warm_state(double host_time_s) const;
 
-  // Appends the navigation outputs this sample produced (none while aligning).
+  // Appends the navigation outputs this sample produced (none while aligning). imu.t_s and fix.t_s are seconds
+  // of the week gps_week.
   void on_imu(const ImuIncrement& imu, int gps_week, double arrival_s, std::vector<FusionOutput>& out);
-  void on_gnss(const GnssFix& fix, double arrival_s) { session_.add_gnss(fix, arrival_s); }
+  void on_gnss(const GnssFix& fix, int gps_week, double arrival_s);
   // Another sensor's reading (odometer from wheel_speed_t, ...).
   void on_observation(est::ObservationPtr reading, double arrival_s, std::vector<FusionOutput>& out);
   // Lets queued samples through when GNSS is silent (call periodically with the host time).
@@ -70,6 +75,9 @@ class FusionEngine {
   // A wheel_speed_t the input gate accepted, as an odometer reading (ignored without the odometer aid).
   void on_wheel_speed(const ldv_lcm::wheel_speed_t& m, double arrival_s, std::vector<FusionOutput>& out);
 
+  // A filter epoch (seconds on the engine's continuous scale, as in InnovationRecord::t_s) as week + seconds.
+  GpsTime week_time(double filter_t_s) const { return time_.week_time(filter_t_s); }
+
   bool navigating() const { return session_.navigating(); }
   const est::NavFilter& filter() const { return filter_; }
   est::NavFilter& filter() { return filter_; }
@@ -77,6 +85,7 @@ class FusionEngine {
   const est::NavSession& session() const { return session_; }
 
  private:
+  ContinuousGpsTime time_;
   est::NavFilter filter_;
   std::vector<FusionOutput>* out_ = nullptr;  // where the session's epochs go during a call
   est::NavSession::EpochSink epoch_observer_;

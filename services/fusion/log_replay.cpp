@@ -43,7 +43,7 @@ LogReplaySummary replay_fusion_log(const std::string& log_path, FusionEngine& en
         continue;
       }
       ++sum.gnss_messages;
-      engine.on_gnss(gnss_from_message(m), arrival_s);
+      engine.on_gnss(gnss_from_message(m), m.gps_week, arrival_s);
     } else if (ev.channel == kWheelSpeedChannel && engine.wants_odometer()) {
       ldv_lcm::wheel_speed_t m;
       const bool decoded = m.decode(ev.data.data(), 0, static_cast<int>(ev.data.size())) >= 0;

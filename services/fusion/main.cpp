@@ -3,6 +3,7 @@
 // NAV_INNOVATION at the GNSS rate and its heartbeat; saves a warm-start state once a second.
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <filesystem>
 #include <ldv_lcm/nav_innovation_t.hpp>
 #include <ldv_lcm/nav_state_t.hpp>
 #include <thread>
@@ -73,10 +74,13 @@ int main(int argc, char** argv) {
     so.align_wait_s = cfg.align_wait_s;
     ldv::FusionEngine engine(so);
     if (!cfg.state_file.empty()) {
-      if (auto w = ldv::load_warm_state(cfg.state_file, ldv::host_time_s(), cfg.warm_start_max_age_s)) {
+      std::string refused_why;
+      if (auto w = ldv::load_warm_state(cfg.state_file, ldv::host_time_s(), cfg.warm_start_max_age_s, &refused_why)) {
         engine.set_warm_start(*w);
         spdlog::info("fusion: warm start available from {} (saved {:.1f} s ago)", cfg.state_file,
                      ldv::host_time_s() - w->saved_host_time_s);
+      } else if (std::filesystem::exists(cfg.state_file)) {
+        spdlog::warn("fusion: warm-state file {} not used ({}): aligning instead", cfg.state_file, refused_why);
       }
     }
 
@@ -84,7 +88,6 @@ int main(int argc, char** argv) {
     ldv::SequenceTracker imu_seq, gnss_seq, wheel_seq;
     int64_t nav_seq = 0, innovation_seq = 0;
     double last_innovation_t = -1e300, next_save_s = 0;
-    int last_week = 0;
     std::vector<ldv::FusionOutput> outputs;
     bool announced = false;
     size_t latency_decisions_logged = 0;
@@ -100,7 +103,7 @@ int main(int argc, char** argv) {
       for (const auto& r : engine.filter().take_innovations()) {
         if (r.t_s <= last_innovation_t && r.sensor == ldv::est::sensors::kGnssPosition) continue;
         if (r.replayed && r.t_s <= last_innovation_t) continue;  // already published before a rewind
-        rt.bus().publish("NAV_INNOVATION", ldv::innovation_message(r, last_week, innovation_seq++));
+        rt.bus().publish("NAV_INNOVATION", ldv::innovation_message(r, engine.week_time(r.t_s), innovation_seq++));
         // A GNSS solution the innovation gate refused is rejected input (service_status_t.malformed).
         if (!r.used()) ++rt.counters().malformed;  // rejected, or kept by the robust update with a trace of weight
         last_innovation_t = std::max(last_innovation_t, r.t_s);
@@ -137,7 +140,6 @@ int main(int argc, char** argv) {
       ++rt.counters().received;
       rt.counters().dropped += imu_seq.observe(m.seq);
       if (refused(gate.check(m), "IMU", m.gps_week, m.gps_sow_s)) return;
-      last_week = m.gps_week;
       engine.on_imu(ldv::imu_from_message(m), m.gps_week, ldv::host_time_s(), outputs);
       publish(outputs);
     }, 20000);
@@ -145,7 +147,7 @@ int main(int argc, char** argv) {
       ++rt.counters().received;
       rt.counters().dropped += gnss_seq.observe(m.seq);
       if (refused(gate.check(m), "GNSS_SOLUTION", m.gps_week, m.gps_sow_s)) return;
-      engine.on_gnss(ldv::gnss_from_message(m), ldv::host_time_s());
+      engine.on_gnss(ldv::gnss_from_message(m), m.gps_week, ldv::host_time_s());
     }, 1000);
     if (engine.wants_odometer())
       rt.bus().subscribe<ldv_lcm::wheel_speed_t>(

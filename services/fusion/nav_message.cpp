@@ -44,11 +44,11 @@ std::string sensor_of_code(int8_t code) {
   return "sensor " + std::to_string(code);
 }
 
-ldv_lcm::nav_innovation_t innovation_message(const est::InnovationRecord& r, int gps_week, int64_t seq) {
+ldv_lcm::nav_innovation_t innovation_message(const est::InnovationRecord& r, const GpsTime& t, int64_t seq) {
   ldv_lcm::nav_innovation_t m{};
   m.seq = seq;
-  m.gps_week = gps_week;
-  m.gps_sow_s = r.t_s;
+  m.gps_week = t.week;
+  m.gps_sow_s = t.sow_s;
   m.sensor = sensor_code(r.sensor);
   const int rows = std::min<int>(3, static_cast<int>(r.innovation.size()));
   m.dim = static_cast<int8_t>(rows);

@@ -14,6 +14,7 @@ ldv_lcm::nav_state_t nav_message(const FusionOutput& o, int64_t seq);
 int8_t sensor_code(est::SensorName sensor);
 // The sensor's name for a code ("sensor N" for an unknown one).
 std::string sensor_of_code(int8_t code);
-ldv_lcm::nav_innovation_t innovation_message(const est::InnovationRecord& r, int gps_week, int64_t seq);
+// t: the record's epoch as week + seconds of week (FusionEngine::week_time of r.t_s).
+ldv_lcm::nav_innovation_t innovation_message(const est::InnovationRecord& r, const GpsTime& t, int64_t seq);
 
 }  // namespace ldv

@@ -20,7 +20,10 @@ struct WarmState {
 };
 
 void save_warm_state(const std::string& path, const WarmState& w);  // atomic (write + rename)
-// Nothing if the file is missing, unreadable or older than max_age_s.
-std::optional<WarmState> load_warm_state(const std::string& path, double now_host_s, double max_age_s);
+// Nothing if the file is missing, unreadable, older than max_age_s, or holds what cannot be a state (a field not
+// finite, an attitude std not positive, a pitch beyond +-90 deg, a position or speed no vehicle has, a gyro bias
+// beyond any gyro's range); then `why` (when given) says which key and why.
+std::optional<WarmState> load_warm_state(const std::string& path, double now_host_s, double max_age_s,
+                                         std::string* why = nullptr);
 
 }  // namespace ldv

@@ -30,8 +30,8 @@ GnssLinkOptions load_gnss_link_options(const std::string& path) {
   o.jump_gate.rejections_to_reset = static_cast<int>(g.integer("rejections_to_reset", o.jump_gate.rejections_to_reset, 1, 1000));
   o.stale_after_s = y.number("stale_after_s", o.stale_after_s, Range::above(0.0).up_to(3600.0));
   config::ConfigSection c = y.section("channels");
-  o.solution_channel = c.text("solution", o.solution_channel);
-  o.pps_channel = c.text("pps", o.pps_channel);
+  o.solution_channel = c.channel("solution", o.solution_channel);
+  o.pps_channel = c.channel("pps", o.pps_channel);
   y.refuse_unknown();
   return o;
 }

@@ -141,6 +141,7 @@ GnssDecoderCounters GnssStreamDecoder::counters() const {
     c.bad_checksum += n.bad_checksum;
     c.truncated += n.truncated;
     c.malformed += n.overlong + nmea_assembler_.counters().malformed;
+    c.epochs_without_date = nmea_assembler_.counters().epochs_without_date;
     c.garbage_bytes += n.garbage_bytes;
   }
   if (ubx_primary) {

@@ -42,6 +42,8 @@ struct GnssDecoderCounters {
   std::uint64_t duplicates = 0;        // NMEA solutions dropped because NAV-PVT gives them
   // Decoded but impossible (gnss_solution_checks.hpp: week, time of week, lat/lon/h, variances): dropped.
   std::uint64_t implausible = 0;
+  // NMEA epochs with a fix but no date yet (no RMC or ZDA on the port): the GPS week is unknown, nothing published.
+  std::uint64_t epochs_without_date = 0;
   std::uint64_t rejected_total() const { return bad_checksum + truncated + malformed + implausible; }
 };
 

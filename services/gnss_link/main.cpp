@@ -21,7 +21,10 @@ constexpr int32_t kFaultInputDown = 1 << 0;     // device not open / not connect
 constexpr int32_t kFaultJumpRejected = 1 << 1;  // a position jump was rejected in the last 10 s
 constexpr int32_t kFaultStale = 1 << 2;         // solutions stopped
 constexpr int32_t kFaultBadInput = 1 << 3;      // checksum errors / truncated / malformed in the last 10 s
+constexpr int32_t kFaultNoSolution = 1 << 4;  // messages arrive, but none gives a solution (e.g. GGA without a date)
 constexpr double kFaultHold_s = 10.0;
+// Epochs without a date before the link says why nothing is published (a receiver prints RMC/ZDA once a second).
+constexpr std::uint64_t kUndatedEpochsBeforeWarning = 5;
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -44,7 +47,9 @@ int main(int argc, char** argv) {
     int64_t solution_seq = 0, pps_seq = 0, previous_label_second = -1;
     double now_s = ldv::host_time_s();
     double last_solution_s = -1, last_jump_s = -1e9, last_bad_input_s = -1e9;
-    uint64_t last_rejected = 0;
+    uint64_t last_rejected = 0, undated_seen = 0;
+    double last_undated_s = -1e9;
+    bool undated_warned = false;
 
     auto on_solution = [&](const GnssSolution& s) {
       pacer.on_epoch(s.time.total_seconds(), now_s);
@@ -114,6 +119,18 @@ int main(int argc, char** argv) {
       if (now_s - last_jump_s < kFaultHold_s) faults |= kFaultJumpRejected;
       if (last_solution_s > 0 && now_s - last_solution_s > o.stale_after_s && !source->finished()) faults |= kFaultStale;
       if (now_s - last_bad_input_s < kFaultHold_s) faults |= kFaultBadInput;
+      // Messages but no solution: the port carries something, but not what a solution needs. Said once, held.
+      const bool undated = c.epochs_without_date >= kUndatedEpochsBeforeWarning && c.epochs_without_date > undated_seen;
+      if (undated) {
+        undated_seen = c.epochs_without_date;
+        last_undated_s = now_s;
+        if (!undated_warned)
+          spdlog::warn("gnss_link: {} NMEA epochs with a fix but no date (no RMC or ZDA on the port): the GPS week is "
+                       "unknown, so no solution is published; enable RMC or ZDA on the receiver",
+                       c.epochs_without_date);
+        undated_warned = true;
+      }
+      if (now_s - last_undated_s < kFaultHold_s) faults |= kFaultNoSolution;
       counters.fault_bits = faults;
       rt.set_state(faults ? 2 : 1);
       rt.tick();

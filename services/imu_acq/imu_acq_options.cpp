@@ -66,10 +66,10 @@ ImuAcqOptions load_imu_acq_options(const std::string& path) {
   o.fit_state_file = y.text("fit_state_file", o.fit_state_file);
   o.fit_state_max_age_s = y.number("fit_state_max_age_s", o.fit_state_max_age_s, Range::above(0.0));
   config::ConfigSection c = y.section("channels");
-  o.imu_channel = c.text("imu", o.imu_channel);
-  o.pps_channel = c.text("pps", o.pps_channel);
-  o.timing_channel = c.text("timing", o.timing_channel);
-  o.label_channel = c.text("labels", o.label_channel);
+  o.imu_channel = c.channel("imu", o.imu_channel);
+  o.pps_channel = c.channel("pps", o.pps_channel);
+  o.timing_channel = c.channel("timing", o.timing_channel);
+  o.label_channel = c.channel("labels", o.label_channel);
   y.refuse_unknown();
   return o;
 }

@@ -26,10 +26,10 @@ TspiOptions load_options(const std::string& path) {
   o.bus_url = y.text("bus_url", o.bus_url);
   ldv::config::ConfigSection t = y.section("tspi");
   o.rate_hz = t.number("rate_hz", o.rate_hz, Range::above(0.0).up_to(1000.0));
-  o.group = t.text("group", o.group);
+  o.group = t.ipv4_multicast_group("group", o.group);
   o.port = static_cast<int>(t.integer("port", o.port, 1, 65535));
   o.ttl = static_cast<int>(t.integer("ttl", o.ttl, 0, 255));
-  o.channel = t.text("channel", o.channel);
+  o.channel = t.channel("channel", o.channel);
   o.print = t.flag("print", o.print);
   y.refuse_unknown();
   return o;
@@ -64,14 +64,15 @@ int main(int argc, char** argv) {
       }
       if (auto t = decimator.on_nav(nav)) {
         tspi_bus.publish(o.channel, *t);
-        if (o.print && nav.gps_sow_s >= next_print_s) {
+        const double nav_t_s = nav.gps_week * 604800.0 + nav.gps_sow_s;  // one scale across weeks
+        if (o.print && nav_t_s >= next_print_s) {
           std::printf("TSPI week %d sow %.3f lat %.9f lon %.9f h %.3f vN %.3f vE %.3f vD %.3f rpy %.3f %.3f %.3f "
                       "std_h %.3f m q %d\n",
                       t->gps_week, t->gps_sow_s, t->lat_deg, t->lon_deg, t->height_m, t->vel_ned_mps[0],
                       t->vel_ned_mps[1], t->vel_ned_mps[2], t->rpy_deg[0], t->rpy_deg[1], t->rpy_deg[2],
                       std::hypot(t->pos_std_ned_m[0], t->pos_std_ned_m[1]), t->quality);
           std::fflush(stdout);
-          next_print_s = std::floor(nav.gps_sow_s) + 1.0;
+          next_print_s = std::floor(nav_t_s) + 1.0;
         }
       }
     }, 5000);

@@ -7,6 +7,8 @@
 #include <ldv_lcm/nav_state_t.hpp>
 #include <ldv_lcm/tspi_v1_t.hpp>
 
+#include "common/formats/gnss_solution_checks.hpp"
+
 namespace ldv {
 
 class TspiDecimator {
@@ -18,12 +20,17 @@ class TspiDecimator {
   // caller counts it): a TSPI with NaN is never sent, let alone one marked aided.
   std::optional<ldv_lcm::tspi_v1_t> on_nav(const ldv_lcm::nav_state_t& nav) {
     if (!is_usable(nav)) return std::nullopt;
+    // TSPI only goes forward in GPS time (one scale across weeks): a NAV older than the last one sent (fusion
+    // re-aligned, or replayed an older epoch) would make a receiver's track jump back.
+    const double t_s = nav.gps_week * 604800.0 + nav.gps_sow_s;
+    if (has_last_slot_ && t_s <= last_sent_s_) return std::nullopt;
     // 0.1 ms tolerance: NAV epochs carry the IMU stamps, whose last digits jitter (far below an IMU interval).
     const long slot = static_cast<long>(std::floor((nav.gps_sow_s + 1e-4) * rate_hz_));
     if (has_last_slot_ && slot == last_slot_ && nav.gps_week == last_week_) return std::nullopt;
     has_last_slot_ = true;
     last_slot_ = slot;
     last_week_ = nav.gps_week;
+    last_sent_s_ = t_s;
     return make_tspi(nav);
   }
 
@@ -46,14 +53,20 @@ class TspiDecimator {
     return t;
   }
 
-  // True when every number a TSPI carries is finite (and the std non-negative, the time inside a week):
-  // a NaN anywhere means the estimator's output is not a navigation solution, whatever its mode says.
+  // True when every number a TSPI carries is finite and plausible (the std non-negative, the time inside a
+  // plausible week, the height and speed within what gnss_solution_checks allows a receiver): a NaN or a
+  // 1e6 m/s anywhere means the estimator's output is not a navigation solution, whatever its mode says.
   static bool is_usable(const ldv_lcm::nav_state_t& nav) {
     const auto finite = [](const auto* v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); };
     const auto std_ok = [&](const float* v) { return finite(v) && v[0] >= 0 && v[1] >= 0 && v[2] >= 0; };
+    const double speed_mps = std::sqrt(nav.vel_ned_mps[0] * nav.vel_ned_mps[0] + nav.vel_ned_mps[1] * nav.vel_ned_mps[1] +
+                                       nav.vel_ned_mps[2] * nav.vel_ned_mps[2]);
     return std::isfinite(nav.gps_sow_s) && nav.gps_sow_s >= 0 && nav.gps_sow_s < 604800.0 &&
+           nav.gps_week >= gnss::kMinPlausibleGpsWeek && nav.gps_week <= gnss::kMaxPlausibleGpsWeek &&
            std::isfinite(nav.lat_deg) && std::abs(nav.lat_deg) <= 90.0 && std::isfinite(nav.lon_deg) &&
-           std::isfinite(nav.height_m) && finite(nav.vel_ned_mps) && finite(nav.rpy_deg) &&
+           std::abs(nav.lon_deg) <= 360.0 && std::isfinite(nav.height_m) &&
+           nav.height_m >= gnss::kMinPlausibleHeight_m && nav.height_m <= gnss::kMaxPlausibleHeight_m &&
+           finite(nav.vel_ned_mps) && speed_mps <= gnss::kMaxPlausibleSpeed_mps && finite(nav.rpy_deg) &&
            std_ok(nav.pos_std_ned_m) && std_ok(nav.vel_std_ned_mps) && std_ok(nav.att_std_deg);
   }
 
@@ -72,6 +85,7 @@ class TspiDecimator {
   bool has_last_slot_ = false;
   long last_slot_ = 0;
   int last_week_ = 0;
+  double last_sent_s_ = 0.0;
   int64_t seq_ = 0;
 };
 

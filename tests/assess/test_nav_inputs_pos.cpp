@@ -68,11 +68,14 @@ TEST(NavInputsPos, GivenOneRecordStampedAhead_ThenTheLaterFixesAreNotDroppedAsRe
 }
 
 TEST(NavInputsPos, GivenNonPositiveSigmas_ThenThoseRecordsAreMalformedAndCountedByReason) {
-  const NavInputs in =
-      load(pos_line(2300, 100.0) + pos_line(2300, 101.0, 0.0) + pos_line(2300, 102.0, -0.01) + pos_line(2300, 103.0));
-  ASSERT_EQ(in.gnss.size(), 2u);
+  std::string text = pos_line(2300, 100.0) + pos_line(2300, 101.0, 0.0) + pos_line(2300, 102.0, -0.01);
+  for (int k = 3; k < 30; ++k) text += pos_line(2300, 100.0 + k);  // 2 of 30 malformed: under the 10 % rule
+  const NavInputs in = load(text);
+  ASSERT_EQ(in.gnss.size(), 28u);
   EXPECT_DOUBLE_EQ(in.gnss[1].t_s, 103.0);
-  EXPECT_NE(in.gnss_note.find("2 malformed (position sigma not positive)"), std::string::npos) << in.gnss_note;
+  // The first such line is named (line 3: the header is line 1).
+  EXPECT_NE(in.gnss_note.find("2 malformed (position sigma not positive, first at line 3)"), std::string::npos)
+      << in.gnss_note;
 }
 
 TEST(NavInputsPos, GivenOnlyZeroSigmas_ThenLoadingFailsNamingTheLineInsteadOfRejectingEveryFixLater) {
@@ -83,7 +86,38 @@ TEST(NavInputsPos, GivenOnlyZeroSigmas_ThenLoadingFailsNamingTheLineInsteadOfRej
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
     EXPECT_EQ(e.line(), 2);  // the first record, after the header line
-    EXPECT_NE(std::string(e.what()).find("120 malformed (position sigma not positive)"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("120 malformed (position sigma not positive"), std::string::npos) << e.what();
+  }
+}
+
+// Issue 35, item 15: one record dated 1980/01/06, or with a week of 99999999999 (an int overflow) or a year of
+// 2147483647, moved the reference week: 0 of 121 fixes used, a free-inertial run with exit 0.
+TEST(NavInputsPos, GivenOneRecordOfAnImpossibleDate_ThenItIsMalformedAndEveryOtherFixKeepsItsTime) {
+  for (const std::string bad : {std::string("1980/01/06 00:00:00.000 35.1 136.9 104.8 1 10 0.01 0.01 0.02 0 0 0 0.0 9.9\n"),
+                                std::string("99999999999 100.000 35.1 136.9 104.8 1 10 0.01 0.01 0.02 0 0 0 0.0 9.9\n"),
+                                std::string("2147483647/01/06 00:00:00.000 35.1 136.9 104.8 1 10 0.01 0.01 0.02 0 0 0 0.0 9.9\n"),
+                                std::string("0 100.000 35.1 136.9 104.8 1 10 0.01 0.01 0.02 0 0 0 0.0 9.9\n")}) {
+    std::string text;
+    for (int k = 0; k < 121; ++k) text += k == 60 ? bad : pos_line(2300, 100.0 + k);
+    const NavInputs in = load(text);
+    EXPECT_EQ(in.gps_week, 2300) << bad;
+    ASSERT_EQ(in.gnss.size(), 120u) << bad;
+    EXPECT_DOUBLE_EQ(in.gnss.front().t_s, 100.0);
+    EXPECT_DOUBLE_EQ(in.gnss.back().t_s, 220.0);
+    EXPECT_NE(in.gnss_note.find("1 malformed"), std::string::npos) << in.gnss_note;
+  }
+}
+
+// Issue 35, item 16: 200 malformed lines and 1 good one were read with exit 0 and no line numbers.
+TEST(NavInputsPos, GivenMostLinesMalformed_ThenTheFileIsRefusedNamingTheFirstBadLine) {
+  std::string text = pos_line(2300, 100.0);
+  for (int k = 0; k < 200; ++k) text += "2300 10x.000 35.1 136.9 104.8 1 10 0.01 0.01 0.02 0 0 0 0.0 9.9\n";
+  try {
+    load(text);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 3);
+    EXPECT_NE(std::string(e.what()).find("200 of 201 solution lines malformed"), std::string::npos) << e.what();
   }
 }
 

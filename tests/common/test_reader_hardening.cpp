@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 
 #include "common/formats/kfgins_config.hpp"
 #include "common/formats/kfgins_files.hpp"
@@ -301,4 +302,197 @@ TEST(WriteErrors, AFullDiskIsAnErrorNamingTheFile) {
               f.close();
             }).find("/dev/full"),
             std::string::npos);
+}
+
+// Issue 35, items 13, 14, 27, 29 (the KF-GINS text readers).
+namespace {
+std::string gnss_line(double t_s) {
+  char b[160];
+  std::snprintf(b, sizeof b, "%.3f 30.500000000 114.300000000 20.000 0.010 0.010 0.020\n", t_s);
+  return b;
+}
+}  // namespace
+
+TEST(KfGinsImuCutLine, GivenALastLineCutMidNumberWithoutANewline_ThenItIsDroppedAsCut) {
+  // Given: 100 rows written with 9 decimals, the last one cut after "-4." (a recorder killed while writing).
+  std::string text;
+  char b[200];
+  for (int i = 0; i < 100; ++i) {
+    std::snprintf(b, sizeof b, "%.4f 0.000100000 0.000200000 0.000300000 0.010000000 0.020000000 -4.123456789\n",
+                  100.0 + 0.01 * i);
+    text += b;
+  }
+  text += "101.0000 0.000100000 0.000200000 0.000300000 0.010000000 0.020000000 -4.";
+  const std::string p = write_temp("imu_cut.txt", text);
+  // When
+  ImuReadReport rep;
+  const auto imu = read_kfgins_imu(p, &rep);
+  // Then: the cut row is dropped and counted; a last row written whole but without a newline is kept.
+  EXPECT_EQ(imu.size(), 100u);
+  EXPECT_EQ(rep.dropped[DropReason::kMalformed], 1);
+  EXPECT_NEAR(imu.back().dvel_b_mps.z(), -4.123456789, 1e-12);
+  std::string whole = text.substr(0, text.rfind('\n') + 1) +
+                      "101.0000 0.000100000 0.000200000 0.000300000 0.010000000 0.020000000 -4.000000000";
+  const auto kept = read_kfgins_imu(write_temp("imu_whole.txt", whole));
+  EXPECT_EQ(kept.size(), 101u);
+}
+
+TEST(KfGinsGnssTime, GivenOneBadDigitInOneTime_ThenThatFixIsDroppedAsAJumpAndTheFileIsRead) {
+  // Given: 121 fixes at 1 Hz, the time of line 52 with a bad digit (345650 -> 945650).
+  std::string text;
+  for (int i = 0; i < 121; ++i) text += gnss_line(i == 51 ? 945650.0 : 345599.0 + i);
+  ASSERT_NE(text.find("945650.000"), std::string::npos);
+  const std::string p = write_temp("gnss_digit.txt", text);
+  // When
+  GnssReadReport rep;
+  const auto gnss = read_kfgins_gnss(p, &rep);
+  // Then
+  EXPECT_EQ(gnss.size(), 120u);
+  EXPECT_EQ(rep.dropped[DropReason::kTimeJump], 1);
+  EXPECT_EQ(rep.dropped.total(), 1);
+  EXPECT_NE(rep.dropped.first[static_cast<int>(DropReason::kTimeJump)].find(":52:"), std::string::npos)
+      << rep.dropped.first[static_cast<int>(DropReason::kTimeJump)];
+  for (size_t i = 1; i < gnss.size(); ++i) ASSERT_GT(gnss[i].t_s, gnss[i - 1].t_s);
+}
+
+TEST(KfGinsImuTime, GivenAStampOneMillisecondBackwards_ThenTheBadLineIsDroppedAndTheGoodOneBeforeItKept) {
+  // Given: 200 Hz; line 5002 stamped 1 ms before line 5001 (still after line 5000).
+  std::string text;
+  for (int i = 0; i < 10000; ++i) text += imu_line(i == 5001 ? 100.0 + 0.005 * 5000 - 0.001 : 100.0 + 0.005 * i);
+  const std::string p = write_temp("imu_back_1ms.txt", text);
+  ImuReadReport rep;
+  const auto imu = read_kfgins_imu(p, &rep);
+  EXPECT_EQ(imu.size(), 9999u);
+  EXPECT_EQ(rep.dropped[DropReason::kTimeBackwards], 1);
+  EXPECT_NE(rep.dropped.first[static_cast<int>(DropReason::kTimeBackwards)].find(":5002:"), std::string::npos)
+      << rep.dropped.first[static_cast<int>(DropReason::kTimeBackwards)];
+  EXPECT_NEAR(imu[5000].t_s, 100.0 + 0.005 * 5000, 1e-9) << "the good line 5001 is kept";
+}
+
+TEST(KfGinsImuTime, GivenTwoStampsNanosecondsApart_ThenTheSecondIsARepeatAndTimesStrictlyIncrease) {
+  for (const double apart_s : {3e-9, 1e-8}) {
+    std::string text;
+    char b[64];
+    std::snprintf(b, sizeof b, "%.9f", 100.0 + apart_s);
+    text += imu_line(100.0);
+    text += std::string(b) + " 0.001 0.001 0.001 0.001 0.001 0.001\n";
+    text += imu_file(100, 100.005, 0.005);
+    ImuReadReport rep;
+    const auto imu = read_kfgins_imu(write_temp("imu_ns.txt", text), &rep);
+    EXPECT_EQ(imu.size(), 101u);
+    EXPECT_EQ(rep.dropped[DropReason::kRepeated], 1);
+    for (size_t i = 1; i < imu.size(); ++i) ASSERT_GT(imu[i].t_s - imu[i - 1].t_s, 1e-5);
+  }
+}
+
+// Issue 35, item 17: a NaN in the tag header's fraction gave an IMU span "nan - nan" and an error blaming the .pos.
+TEST(RtklibTimeTagFile, GivenANanOrOutOfRangeFractionInTheHeader_ThenTheTagFileIsRefusedByName) {
+  for (const double fraction : {std::nan(""), 1.5, -0.1, std::numeric_limits<double>::infinity()}) {
+    std::string tag = "TIMETAG RTKLIB EX";
+    tag.resize(60, '\0');
+    put_u32(tag, 0);
+    put_u32(tag, static_cast<uint32_t>(kGpsEpochInUnixSeconds + 1000.0));
+    tag.append(reinterpret_cast<const char*>(&fraction), 8);
+    put_u32(tag, 100);
+    put_u32(tag, 10);
+    const std::string p = write_temp("nan_fraction.tag", tag);
+    const std::string e = error_of([&] { read_rtklib_time_tag(p); });
+    EXPECT_NE(e.find(p + ": time-tag header: the start time's fraction"), std::string::npos) << e;
+  }
+}
+
+// Issue 35, items 20-24, 28, 31 (the KF-GINS configuration): every bad value is refused naming the file, the line
+// and the user's own key, never silently taken, and never reported as another part's error.
+namespace {
+std::string kfgins_text(const std::string& extra) {
+  return "imupath: imu.txt\ngnsspath: gnss.txt\nimudatalen: 7\nimudatarate: 200\n"
+         "initpos: [30.5, 114.3, 20.0]\ninitvel: [0, 0, 0]\ninitatt: [0, 0, 90]\n"
+         "imunoise:\n  arw: [0.2, 0.2, 0.2]\n  vrw: [0.4, 0.4, 0.4]\n  gbstd: [50, 50, 50]\n"
+         "  abstd: [250, 250, 250]\n  corrtime: 1.0\n" +
+         extra;
+}
+std::string config_error(const std::string& extra) {
+  const std::string p = write_temp("cfg.yaml", kfgins_text(extra));
+  return error_of([&] { load_kfgins_config(p); });
+}
+}  // namespace
+
+TEST(KfGinsConfigSchema, GivenTheBaseConfig_ThenItLoads) { EXPECT_EQ(config_error(""), ""); }
+
+TEST(KfGinsConfigSchema, GivenADuplicateKey_ThenBothLinesAreNamed) {
+  EXPECT_NE(config_error("imupath: /nonexistent\n").find(":14: imupath: given twice (first at line 1)"),
+            std::string::npos)
+      << config_error("imupath: /nonexistent\n");
+  EXPECT_NE(config_error("ldv:\n  week: 2300\n  week: 2301\n").find(":16: week: given twice (first at line 15)"),
+            std::string::npos);
+}
+
+TEST(KfGinsConfigSchema, GivenASectionOfTheWrongType_ThenTheErrorNamesTheFileAndTheSection) {
+  for (const std::string v : {"[1, 2, 3]", "hello", "5"})
+    EXPECT_NE(config_error("ldv: " + v + "\n").find("cfg.yaml:14: key 'ldv': expected a section of keys"),
+              std::string::npos)
+        << config_error("ldv: " + v + "\n");
+  const std::string p = write_temp("cfg_noise.yaml", "imupath: a\ngnsspath: b\nimunoise: 5\n");
+  EXPECT_NE(error_of([&] { load_kfgins_config(p); }).find("cfg_noise.yaml:3: key 'imunoise': expected a section"),
+            std::string::npos)
+      << error_of([&] { load_kfgins_config(p); });
+}
+
+TEST(KfGinsConfigSchema, GivenNanOrAbsurdNumbers_ThenTheUsersKeyIsNamed) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"ldv:\n  pos_height_offset_m: .nan\n", "key 'ldv.pos_height_offset_m': expected a finite number"},
+      {"ldv:\n  imu_time_shift_s: .nan\n", "key 'ldv.imu_time_shift_s'"},
+      {"ldv:\n  imu_time_shift_s: 1e9\n", "key 'ldv.imu_time_shift_s': expected a finite number in [-10, 10] s"},
+      {"ldv:\n  week: -5\n", "key 'ldv.week'"},
+      {"ldv:\n  week: 99999\n", "key 'ldv.week'"},
+      {"starttime: .nan\n", "key 'starttime': expected a finite number"},
+      {"endtime: .nan\n", "key 'endtime'"},
+      {"imudatarate: .nan\n", "key 'imudatarate'"},
+      {"imudatalen: 1e300\n", "key 'imudatalen': expected a finite number in [7, 64] columns, found '1e300'"},
+  };
+  for (const auto& [extra, expected] : cases) {
+    // The later key wins here only because the base text has no such key (else it is a duplicate, refused).
+    std::string text = kfgins_text("");
+    const std::string key = extra.substr(0, extra.find(':'));
+    if (key == "imudatarate" || key == "imudatalen") {
+      const size_t at = text.find(key + ":");
+      text.erase(at, text.find('\n', at) - at + 1);
+    }
+    const std::string p = write_temp("cfg_nan.yaml", text + extra);
+    const std::string e = error_of([&] { load_kfgins_config(p); });
+    EXPECT_NE(e.find(expected), std::string::npos) << extra << " -> " << e;
+  }
+}
+
+TEST(KfGinsConfigSchema, GivenAnInitialStateOrNoiseBeyondAnySensor_ThenTheKeyIsNamed) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"initatt: [1e300, 0, 15]", "key 'initatt': expected a list of 3 finite numbers, element 1 in [-180, 180] deg"},
+      {"initatt: [0, 0, .inf]", "key 'initatt'"},
+      {"initpos: [.nan, 114.3, 20]", "key 'initpos'"},
+      {"initpos: [100, 114.3, 20]", "key 'initpos': expected a list of 3 finite numbers, element 1 in [-90, 90]"},
+      {"initpos: [30, 1e6, 20]", "key 'initpos'"},
+      {"imunoise:\n  arw: [0.2, 0.2, 0.2]\n  vrw: [0.4, 0.4, 0.4]\n  gbstd: [1e308, 50, 50]\n"
+       "  abstd: [250, 250, 250]\n  corrtime: 1.0",
+       "key 'imunoise.gbstd'"},
+      {"imunoise:\n  arw: [0.2, 0.2, 0.2]\n  vrw: [0.4, 0.4, 0.4]\n  gbstd: [50, 50, 50]\n"
+       "  abstd: [1e308, 250, 250]\n  corrtime: 1.0",
+       "key 'imunoise.abstd'"},
+      {"imunoise:\n  arw: [0.2, 0.2, 0.2]\n  vrw: [0.4, 0.4, 0.4]\n  gbstd: [50, 50, 50]\n"
+       "  abstd: [250, 250, 250]\n  corrtime: 1e300",
+       "key 'imunoise.corrtime'"},
+      {"initposstd: [1e308, 1, 1]", "key 'initposstd'"},
+  };
+  for (const auto& [replacement, expected] : cases) {
+    std::string text = kfgins_text("");
+    const std::string key = replacement.substr(0, replacement.find(':'));
+    const size_t at = text.find(key + ":");
+    if (at != std::string::npos) {
+      size_t end = text.find('\n', at) + 1;
+      if (key == "imunoise") end = text.size();  // the section runs to the end of the base text
+      text.erase(at, end - at);
+    }
+    const std::string p = write_temp("cfg_state.yaml", text + replacement + "\n");
+    const std::string e = error_of([&] { load_kfgins_config(p); });
+    EXPECT_NE(e.find(expected), std::string::npos) << replacement << " -> " << e;
+  }
 }

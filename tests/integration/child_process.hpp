@@ -18,7 +18,10 @@ namespace ldv::test {
 
 class ChildProcess {
  public:
-  ChildProcess(const std::string& program, const std::vector<std::string>& args, const std::string& stdout_path = "") {
+  // stdout_path, stderr_path: files for the child's output ("" keeps the test's own).
+  ChildProcess(const std::string& program, const std::vector<std::string>& args, const std::string& stdout_path = "",
+               const std::string& stderr_path = "")
+      : stderr_path_(stderr_path) {
     std::vector<std::string> all{program};
     all.insert(all.end(), args.begin(), args.end());
     std::vector<char*> argv;
@@ -28,6 +31,8 @@ class ChildProcess {
     posix_spawn_file_actions_init(&actions);
     if (!stdout_path.empty())
       posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, stdout_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (!stderr_path.empty())
+      posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, stderr_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (posix_spawn(&pid_, program.c_str(), &actions, nullptr, argv.data(), environ) != 0)
       throw std::runtime_error("cannot start " + program);
     posix_spawn_file_actions_destroy(&actions);
@@ -39,6 +44,7 @@ class ChildProcess {
     }
   }
   pid_t pid() const { return pid_; }
+  const std::string& stderr_path() const { return stderr_path_; }
   void signal(int sig) { ::kill(pid_, sig); }
   // Waits for exit; returns the exit status, or -signal if killed, or 1000 on timeout.
   int wait_exit(double timeout_s) {
@@ -57,6 +63,7 @@ class ChildProcess {
   }
 
  private:
+  std::string stderr_path_;
   pid_t pid_ = -1;
 };
 

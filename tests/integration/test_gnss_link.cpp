@@ -279,6 +279,33 @@ TEST(GnssLinkIntegration, GivenGarbageTruncationBadChecksumsAndAJump_ThenCounted
   EXPECT_EQ(svc.wait_exit(3.0), 0);
 }
 
+// Issue 35, item 11: a receiver set to print GGA only (no RMC or ZDA) gives positions without a date, so no GPS
+// week and no solution. gnss_link published nothing with a heartbeat of no fault; now it says why.
+TEST(GnssLinkIntegration, GivenGgaWithoutAnyDate_ThenNoSolutionAndTheHeartbeatCarriesTheNoSolutionFault) {
+  test::PtyPair pty;
+  const auto cfg = write_config("gnss_gga_only", "  type: serial\n  serial: {device: " + pty.slave_path() + ", baud: 115200}\n", "nmea");
+  test::ChildProcess svc(kBin, {"--config", cfg}, "", temp_path("gnss_gga_only") + ".log");
+  Listener l;
+  ASSERT_TRUE(l.spin_until([&] { return l.status.has_value() && (l.status->fault_bits & 1) == 0; }, 30.0));
+  std::string stream;
+  for (int k = 0; k < 20; ++k) {
+    test::NmeaEpoch e;
+    e.utc_seconds_of_day = 30000 + k;
+    const std::string text = test::nmea_epoch_text(e);
+    stream += text.substr(0, text.find("$GPRMC"));  // the GGA alone
+  }
+  pty.write_all(stream);
+  EXPECT_TRUE(l.spin_until([&] { return l.status && (l.status->fault_bits & (1 << 4)) != 0; }, 30.0))
+      << "the no-solution fault bit (4)";
+  EXPECT_TRUE(l.solutions.empty());
+  EXPECT_EQ(l.status->state, 2) << "degraded";
+  svc.signal(SIGTERM);
+  EXPECT_EQ(svc.wait_exit(3.0), 0);
+  std::ifstream log(svc.stderr_path());
+  const std::string text{std::istreambuf_iterator<char>(log), std::istreambuf_iterator<char>()};
+  EXPECT_NE(text.find("no RMC or ZDA"), std::string::npos) << text;
+}
+
 // A receiver that is not plugged in: gnss_link runs (it opens the port when it appears), and its very first
 // heartbeat says the input is down (it used to say "running, no fault" until the loop's first turn).
 TEST(GnssLinkIntegration, GivenADeviceThatCannotBeOpened_ThenItsFirstHeartbeatSaysTheInputIsDown) {

@@ -62,3 +62,55 @@ TEST(TspiPubIntegration, DecimatesNavToConfiguredRateOnItsGroupAndStopsCleanly) 
   svc.signal(SIGTERM);
   EXPECT_EQ(svc.wait_exit(3.0), 0);
 }
+
+namespace {
+// Runs `program args`, returns its exit status and what it wrote to stderr (15 s at most).
+std::pair<int, std::string> run_to_exit(const std::string& program, const std::vector<std::string>& args,
+                                        const std::string& name) {
+  const std::string log = (std::filesystem::temp_directory_path() / ("ldv_" + name + ".log")).string();
+  test::ChildProcess p(program, args, "", log);
+  const int rc = p.wait_exit(15.0);
+  std::ifstream in(log);
+  return {rc, std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>())};
+}
+std::string config_file(const std::string& name, const std::string& text) {
+  const std::string path = (std::filesystem::temp_directory_path() / ("ldv_" + name + ".yaml")).string();
+  std::ofstream(path) << text;
+  return path;
+}
+}  // namespace
+
+// Issue 35, items 9 and 10: a channel LCM cannot send (300 characters: tspi_pub said ready and never sent) and a
+// group with a URL spliced into it (TSPI went to port 9999): refused at start-up, naming the file, line and key.
+TEST(TspiPubIntegration, GivenAChannelLcmCannotSendOrAGroupThatIsNotAMulticastAddress_ThenItRefusesToStart) {
+  const std::string bin = std::string(LDV_BIN_DIR) + "/tspi_pub";
+  const std::string long_channel =
+      config_file("tspi_long_channel", "tspi:\n  channel: " + std::string(300, 'T') + "\n");
+  auto [rc, err] = run_to_exit(bin, {"--config", long_channel}, "tspi_long_channel");
+  EXPECT_EQ(rc, 1);
+  EXPECT_NE(err.find(long_channel + ":2: tspi.channel: expected an LCM channel name"), std::string::npos) << err;
+
+  for (const std::string group : {"\"239.255.77.1:9999?ttl=255&x=\"", "10.0.0.1", "239.255.77", "localhost"}) {
+    const std::string bad_group = config_file("tspi_bad_group", "tspi:\n  group: " + group + "\n");
+    std::tie(rc, err) = run_to_exit(bin, {"--config", bad_group}, "tspi_bad_group");
+    EXPECT_EQ(rc, 1) << group;
+    EXPECT_NE(err.find(bad_group + ":2: tspi.group: expected an IPv4 multicast address"), std::string::npos) << err;
+  }
+}
+
+// Issue 35, item 8: a tcpq:// bus with no server made fusion and `ldv spy` abort inside LCM (select on fd -1,
+// SIGABRT) and `ldv play` exit 0 having published nothing: each now exits 1 saying the bus is not connected.
+TEST(BusUrl, GivenATcpqBusWithNoServer_ThenFusionSpyAndPlayExitWithAClearError) {
+  const std::string url = "tcpq://127.0.0.1:1";
+  const std::string bin = std::string(LDV_BIN_DIR);
+  const std::string kfgins = config_file("tcpq_kfgins",
+                                         "imupath: imu.txt\ngnsspath: gnss.txt\nimunoise:\n  arw: [0.2, 0.2, 0.2]\n"
+                                         "  vrw: [0.4, 0.4, 0.4]\n  gbstd: [50, 50, 50]\n  abstd: [250, 250, 250]\n"
+                                         "  corrtime: 1.0\n");
+  auto [rc, err] = run_to_exit(bin + "/fusion", {"--bus-url", url, "--kfgins-config", kfgins}, "tcpq_fusion");
+  EXPECT_EQ(rc, 1) << err;
+  EXPECT_NE(err.find("not connected"), std::string::npos) << err;
+  std::tie(rc, err) = run_to_exit(bin + "/ldv", {"spy", "--url", url}, "tcpq_spy");
+  EXPECT_EQ(rc, 1) << err;
+  EXPECT_NE(err.find("not connected"), std::string::npos) << err;
+}

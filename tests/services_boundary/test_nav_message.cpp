@@ -52,7 +52,7 @@ TEST(NavMessage, GivenAFixDisplacedFromTheFilter_ThenThePublishedInnovationIsPre
   fix.t_s = t0 + 1.5;
   fix.pos = earth::offset_ned(r, d_ned_m);
   fix.pos_std_ned_m = Vec3::Constant(0.02);
-  engine.on_gnss(fix, 0.0);
+  engine.on_gnss(fix, 2300, 0.0);
   run_to(t0 + 2.0);
 
   // Then the message fusion publishes for it says innovation = -d
@@ -62,7 +62,7 @@ TEST(NavMessage, GivenAFixDisplacedFromTheFilter_ThenThePublishedInnovationIsPre
       "NAV_INNOVATION", [&](const ldv_lcm::nav_innovation_t& m, const std::string&) { got.push_back(m); });
   int64_t seq = 0;
   for (const est::InnovationRecord& rec : engine.filter().take_innovations())
-    ASSERT_TRUE(bus.publish("NAV_INNOVATION", innovation_message(rec, 2300, seq++)));
+    ASSERT_TRUE(bus.publish("NAV_INNOVATION", innovation_message(rec, engine.week_time(rec.t_s), seq++)));
   while (bus.handle(0) > 0) {
   }
   ASSERT_EQ(got.size(), 1u);

@@ -51,3 +51,31 @@ TEST(ServiceConfigs, GivenTheDeployedConfigs_ThenEveryKeyIsKnown) {
   EXPECT_NO_THROW(imu::load_imu_acq_options(std::string(LDV_SOURCE_DIR) + "/deploy/config/imu_acq.yaml"));
   EXPECT_NO_THROW(gnss::load_gnss_link_options(std::string(LDV_SOURCE_DIR) + "/deploy/config/gnss_link.yaml"));
 }
+
+// Issue 35, item 20: a key given twice (an appended line) silently kept its first value.
+TEST(ServiceConfigs, GivenAKeyTwice_ThenStartUpFailsNamingBothLines) {
+  const std::string path =
+      write("imu_dup", "input: {type: file, file: {path: x.bin}}\nsample_rate_hz: 200\nsample_rate_hz: 100\n");
+  EXPECT_EQ(error_of([&] { imu::load_imu_acq_options(path); }),
+            path + ":3: sample_rate_hz: given twice (first at line 2): which one is meant?");
+}
+
+// Issue 35, items 9, 10 and 31: channel names LCM cannot send, a group that is not a multicast address, a NUL in
+// a text value: refused where they are read.
+TEST(ServiceConfigs, GivenABadChannelGroupOrText_ThenTheKeyIsNamed) {
+  config::ConfigSection s(YAML::Load("channel: " + std::string(64, 'C') + "\nspaced: \"A B\"\ngroup: 10.1.2.3\n"
+                                     "url: \"239.255.77.1:9999?ttl=255&x=\"\nok: 239.255.77.1\n"),
+                          "f.yaml");
+  EXPECT_NE(error_of([&] { s.channel("channel", "X"); }).find("channel: expected an LCM channel name"), std::string::npos);
+  EXPECT_NE(error_of([&] { s.channel("spaced", "X"); }).find("spaced: expected an LCM channel name"), std::string::npos);
+  EXPECT_EQ(s.channel("absent", "TSPI"), "TSPI");
+  EXPECT_NE(error_of([&] { s.ipv4_multicast_group("group", "x"); }).find("group: expected an IPv4 multicast address"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { s.ipv4_multicast_group("url", "x"); }).find("url: expected an IPv4 multicast address"),
+            std::string::npos);
+  EXPECT_EQ(s.ipv4_multicast_group("ok", "x"), "239.255.77.1");
+  YAML::Node n;
+  n["path"] = std::string("a\0b", 3);
+  config::ConfigSection t(n, "g.yaml");
+  EXPECT_NE(error_of([&] { t.text("path", ""); }).find("path: expected text without a NUL"), std::string::npos);
+}

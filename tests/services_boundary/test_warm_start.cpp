@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "common/geo/earth_model.hpp"
 #include "estimator/run/run_navigation.hpp"
@@ -47,7 +48,7 @@ double worst_heading_after_restart(const sim::SimResult& sim, const est::Session
   for (const ImuIncrement& imu : sim.imu) {
     if (imu.t_s < restart_s) continue;
     if (imu.t_s > restart_s + window_s) break;
-    for (; g < sim.gnss.size() && sim.gnss[g].t_s + 0.2 <= imu.t_s; ++g) engine.on_gnss(sim.gnss[g], imu.t_s);
+    for (; g < sim.gnss.size() && sim.gnss[g].t_s + 0.2 <= imu.t_s; ++g) engine.on_gnss(sim.gnss[g], 2300, imu.t_s);
     out.clear();
     engine.on_imu(imu, 2300, imu.t_s, out);
     for (const FusionOutput& o : out)
@@ -120,7 +121,7 @@ TEST(WarmStart, GivenAMemsTurnOnBias_WhenFusionRestartsWhileMoving_ThenTheSavedG
   size_t g = 0;
   for (const ImuIncrement& imu : sim.imu) {
     if (imu.t_s > restart_s - 2.0) break;  // down for 2 s
-    for (; g < sim.gnss.size() && sim.gnss[g].t_s + 0.2 <= imu.t_s; ++g) before.on_gnss(sim.gnss[g], imu.t_s);
+    for (; g < sim.gnss.size() && sim.gnss[g].t_s + 0.2 <= imu.t_s; ++g) before.on_gnss(sim.gnss[g], 2300, imu.t_s);
     out.clear();
     before.on_imu(imu, 2300, imu.t_s, out);
   }
@@ -147,4 +148,81 @@ TEST(WarmStart, GivenAMemsTurnOnBias_WhenFusionRestartsWhileMoving_ThenTheSavedG
   // the datasheet model's heading loose, so nothing pulls it in); without the bias it runs off.
   EXPECT_LT(with_bias, saved_error_deg + gap_turn_deg + 1.0);
   EXPECT_GT(no_bias, saved_error_deg + gap_turn_deg + 5.0);
+}
+
+// A warm-state file is the service's own, but a disk or a hand can spoil it (issue 35, item 6): every field is
+// checked, and a bad file is refused with the reason (fusion then aligns), never taken in to stop navigation.
+TEST(WarmState, GivenAFieldThatCannotBeAState_ThenTheFileIsRefusedWithTheReason) {
+  WarmState w;
+  w.saved_host_time_s = 1000.0;
+  w.state.t_s = 345700.0;
+  w.state.pos = {0.5, -2.0, 100.0};
+  w.state.v_n_mps = Vec3(3.0, -4.0, 0.1);
+  w.state.q_b_n = quat_from_euler(Vec3(0.01, -0.02, 1.5));
+  w.std.att_rad = Vec3(0.001, 0.001, 0.01);
+  const fs::path path = temp_file("bad_state.yaml");
+  save_warm_state(path.string(), w);
+  std::string good;
+  {
+    std::ifstream in(path);
+    for (std::string line; std::getline(in, line);) good += line + "\n";
+  }
+  const auto with_line = [&](const std::string& key, const std::string& value) {
+    std::string text;
+    std::istringstream in(good);
+    for (std::string line; std::getline(in, line);)
+      text += line.rfind(key + ":", 0) == 0 ? key + ": " + value + "\n" : line + "\n";
+    std::ofstream(path) << text;
+  };
+  std::string why;
+  ASSERT_TRUE(load_warm_state(path.string(), 1001.0, 30.0, &why)) << why;
+  for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{
+           {"rpy_rad", "[.nan, 0, 1]"},
+           {"att_std_rad", "[-0.01, 0.001, 0.01]"},
+           {"att_std_rad", "[0, 0.001, 0.01]"},
+           {"v_n_mps", "[1e9, 0, 0]"},
+           {"lat_rad", "2.0"},
+           {"h_m", "1e300"},
+           {"t_s", ".inf"},
+           {"gyro_bias_rad_s", "[50, 0, 0]"},
+           {"rpy_rad", "[0, 2.0, 1]"}}) {
+    with_line(key, value);
+    why.clear();
+    EXPECT_FALSE(load_warm_state(path.string(), 1001.0, 30.0, &why)) << key << ": " << value;
+    EXPECT_NE(why.find(key), std::string::npos) << "the reason names the key: " << why;
+  }
+  fs::remove(path);
+}
+
+// kill -9 and a restart 2 s later, with a configuration that also gives an initial state (issue 35, item 7): the
+// saved state is seconds old, the configuration's from the start of the run: the saved one is used.
+TEST(WarmStart, GivenAConfiguredInitialStateAndARecentSavedOne_WhenFusionRestartsWhileMoving_ThenItWarmStarts) {
+  sim::SimRequest req;
+  req.grade = "hg1700-typical";
+  req.scenario = "drive";
+  req.duration_s = 120.0;
+  req.gnss_rate_hz = 5.0;
+  req.seed = 4;
+  const sim::SimResult sim = sim::simulate(req);
+  const KfGinsConfig cfg = sim.kfgins;  // initpos, initvel, initatt at the run's start
+  ASSERT_TRUE(cfg.init_pos && cfg.init_rpy_rad);
+  const est::FilterOptions fo = est::options_from_kfgins(cfg);
+  const est::SessionOptions so = live_session_options(cfg, fo);
+
+  const double restart_s = sim.imu.front().t_s + 60.0;
+  FusionEngine before(so);
+  std::vector<FusionOutput> out;
+  size_t g = 0;
+  for (const ImuIncrement& imu : sim.imu) {
+    if (imu.t_s > restart_s - 2.0) break;
+    for (; g < sim.gnss.size() && sim.gnss[g].t_s + 0.2 <= imu.t_s; ++g) before.on_gnss(sim.gnss[g], 2300, imu.t_s);
+    out.clear();
+    before.on_imu(imu, 2300, imu.t_s, out);
+  }
+  ASSERT_TRUE(before.navigating());
+  std::string how;
+  const double worst_deg = worst_heading_after_restart(sim, so, before.warm_state(0.0), restart_s, 20.0, &how);
+  EXPECT_NE(how.find("warm start"), std::string::npos) << how;
+  EXPECT_EQ(how.find("aligned instead"), std::string::npos) << how;
+  EXPECT_LT(worst_deg, 1.0);
 }

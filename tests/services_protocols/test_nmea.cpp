@@ -207,3 +207,17 @@ TEST(NmeaEpochAssembler, GivenGgaWithoutFixOrBeforeAnyDate_ThenNoSolutionAndTheR
   EXPECT_EQ(assembler.counters().epochs_without_fix, 1u);
   EXPECT_EQ(assembler.counters().epochs_without_date, 1u);
 }
+
+// Issue 35, item 12: a date that does not exist (31 February 2024) was published as GPS week 2304.
+TEST(NmeaSentences, GivenADayTheCalendarDoesNotHave_ThenRmcAndZdaAreRefused_AndA29FebruaryOfALeapYearIsKept) {
+  EXPECT_FALSE(parse_rmc("GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,310224,003.1,W"));
+  EXPECT_FALSE(parse_zda("GPZDA,201530.00,31,02,2024,00,00"));
+  EXPECT_FALSE(parse_zda("GPZDA,201530.00,29,02,2023,00,00"));  // 2023 is not a leap year
+  EXPECT_FALSE(parse_zda("GPZDA,201530.00,31,04,2024,00,00"));  // April has 30 days
+  EXPECT_FALSE(parse_zda("GPZDA,201530.00,29,02,2100,00,00"));  // a century, not divisible by 400
+  const auto leap = parse_zda("GPZDA,201530.00,29,02,2024,00,00");
+  ASSERT_TRUE(leap);
+  EXPECT_EQ(leap->date.day, 29);
+  EXPECT_TRUE(parse_zda("GPZDA,201530.00,29,02,2000,00,00"));
+  EXPECT_TRUE(parse_rmc("GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,290224,003.1,W"));
+}

@@ -143,11 +143,14 @@ TEST(RtklibSolutionStream, GivenChunkedTcpBytesWithBadLines_ThenGoodLinesSurvive
 TEST(RtklibSolution, GivenAMalformedLine_ThenReadingSkipsAndCountsItByReason) {
   const std::string path = ::testing::TempDir() + "bad.pos";
   FILE* f = std::fopen(path.c_str(), "w");
-  std::fputs("% header\n2024/06/24 08:20:00.000 35.1 136.9 104.8 1 42 0.01 0.01 0.02 0 0 0 0 0\n2024/06/24 garbage\n", f);
+  std::fputs("% header\n2024/06/24 garbage\n", f);
+  for (int k = 0; k < 10; ++k)  // one bad line in eleven: under the 10 % that makes it a wrong file
+    std::fprintf(f, "2024/06/24 08:20:%02d.000 35.1 136.9 104.8 1 42 0.01 0.01 0.02 0 0 0 0 0\n", k);
   std::fclose(f);
   RtklibReadReport report;
   const auto sols = read_rtklib_pos(path, {}, &report);
-  EXPECT_EQ(sols.size(), 1u);
+  EXPECT_EQ(sols.size(), 10u);
+  EXPECT_EQ(report.first_line_by_reason.at("expected 'yyyy/mm/dd hh:mm:ss' or 'week tow'"), 2);
   EXPECT_EQ(report.malformed(), 1);
   EXPECT_EQ(report.malformed_by_reason.count("expected 'yyyy/mm/dd hh:mm:ss' or 'week tow'"), 1u);
 }
@@ -162,7 +165,7 @@ TEST(RtklibSolution, GivenOnlyMalformedLines_ThenReadingThrowsWithFileAndLine) {
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
     EXPECT_EQ(e.line(), 2);
-    EXPECT_NE(std::string(e.what()).find("1 malformed (position sigma not positive)"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("1 malformed (position sigma not positive, first at line 3)"), std::string::npos) << e.what();
   }
 }
 

@@ -53,8 +53,17 @@ struct PosTimeOrder {
   long repeated = 0, out_of_order = 0;
 };
 PosTimeOrder in_time_order(const std::vector<gnss::GnssSolution>& sols, int& ref_week) {
-  ref_week = sols.front().time.week;
-  for (const auto& s : sols) ref_week = std::min(ref_week, s.time.week);
+  // The drive's first week (KF-GINS files count on from it past a rollover): the earliest week next to the
+  // median one. One record of a far week (a corrupted date) must not move every other record's time (the
+  // earliest week did: a record of 1980 put all the others 2300 weeks ahead of the IMU).
+  std::vector<int> weeks;
+  weeks.reserve(sols.size());
+  for (const auto& s : sols) weeks.push_back(s.time.week);
+  std::nth_element(weeks.begin(), weeks.begin() + weeks.size() / 2, weeks.end());
+  const int median_week = weeks[weeks.size() / 2];
+  ref_week = median_week;
+  for (const auto& s : sols)
+    if (s.time.week == median_week - 1) ref_week = median_week - 1;
   PosTimeOrder o;
   for (std::size_t i = 0; i < sols.size(); ++i) {
     if (i > 0 && sols[i].time.total_seconds() < sols[i - 1].time.total_seconds()) ++o.out_of_order;
@@ -513,8 +522,11 @@ NavInputs load_nav_inputs(const NavInputArgs& a) {
       in.gnss.push_back(f);
     }
     DroppedRecords pos_dropped;  // the reader's malformed lines by reason, then the ordering's repeats
-    for (const auto& [why, count] : rep.malformed_by_reason)
-      for (long k = 0; k < count; ++k) pos_dropped.add(DropReason::kMalformed, gnss_path, 0, why);
+    for (const auto& [why, count] : rep.malformed_by_reason) {
+      const auto first = rep.first_line_by_reason.find(why);
+      const long line = first != rep.first_line_by_reason.end() ? first->second : 0;
+      for (long k = 0; k < count; ++k) pos_dropped.add(DropReason::kMalformed, gnss_path, line, why);
+    }
     for (long k = 0; k < order.repeated; ++k) pos_dropped.add(DropReason::kRepeated, gnss_path, 0, "repeated epoch");
     in.file_counts.push_back({"GNSS", gnss_path, static_cast<long>(in.gnss.size()), pos_dropped});
     in.gnss_note = rep.summary() + "; " + std::to_string(order.repeated) + " repeated epochs dropped, " +
