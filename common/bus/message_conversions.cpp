@@ -44,6 +44,15 @@ GnssFix gnss_from_message(const ldv_lcm::gnss_solution_t& m) {
   return g;
 }
 
+gnss::GnssSolution solution_from_message(const ldv_lcm::gnss_solution_t& m) {
+  gnss::GnssSolution s;
+  s.time = {m.gps_week, m.gps_sow_s};
+  s.fix = gnss_from_message(m);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) s.pos_cov_ned_m2(r, c) = m.pos_cov_ned_m2[3 * r + c];
+  return s;
+}
+
 ldv_lcm::gnss_solution_t message_from_gnss(const GnssFix& g, int gps_week, int64_t seq) {
   ldv_lcm::gnss_solution_t m{};
   m.seq = seq;
@@ -83,12 +92,7 @@ std::optional<std::string> implausibility(const ldv_lcm::gnss_solution_t& m) {
     for (double var : m.vel_var_ned_m2s2)
       if (!(var >= 0.0)) return "velocity variance not finite and >= 0";
   }
-  gnss::GnssSolution s;
-  s.time = {m.gps_week, m.gps_sow_s};
-  s.fix = gnss_from_message(m);
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) s.pos_cov_ned_m2(r, c) = m.pos_cov_ned_m2[3 * r + c];
-  if (auto why = gnss::implausibility(s)) return why;
+  if (auto why = gnss::implausibility(solution_from_message(m))) return why;
   if (m.fix_quality < 0 || m.fix_quality > 6) return "fix quality " + std::to_string(m.fix_quality) + " not in [0, 6]";
   return std::nullopt;
 }

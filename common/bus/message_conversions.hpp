@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "common/formats/gnss_solution.hpp"
 #include "common/formats/nav_types.hpp"
 
 namespace ldv {
@@ -16,6 +17,8 @@ ldv_lcm::imu_sample_t message_from_imu(const ImuIncrement& s, int gps_week, int6
 
 // Position std is the square root of the covariance diagonal (NED).
 GnssFix gnss_from_message(const ldv_lcm::gnss_solution_t& m);
+// With its week and full covariance, as the decoders give it (gnss_solution.hpp).
+gnss::GnssSolution solution_from_message(const ldv_lcm::gnss_solution_t& m);
 ldv_lcm::gnss_solution_t message_from_gnss(const GnssFix& g, int gps_week, int64_t seq);
 
 // imu_sample_t.status bit 0: the stamp is extrapolated from the host clock (no PPS fit yet), so the

@@ -61,6 +61,8 @@ struct Reader {
   std::string text(const std::string& key) const {
     const YAML::Node n = at(key);
     if (!n.IsDefined() || !n.IsScalar()) fail(key, n, "a path string" + std::string(n.IsDefined() ? "" : " (key is missing)"));
+    // A NUL would cut the path short where the C library opens it ("a\0b" opened "a").
+    if (n.Scalar().find('\0') != std::string::npos) fail(key, n, "a path string without a NUL character");
     return n.as<std::string>();
   }
   // Three finite numbers, element i in [lo[i], hi[i]].

@@ -304,6 +304,9 @@ std::vector<NavRecord> read_nav(const std::string& path) {
   read_numeric_table(path, 11, 64, [&](long line, const std::vector<double>& v) {
     if (!(v[0] >= 0.0 && v[0] <= 9999.0 && v[0] == std::floor(v[0])))
       throw InputError(path, line, "column 1: expected a GPS week (an integer 0..9999), found " + std::to_string(v[0]));
+    // A position no vehicle has (latitude 1e308) would print as inf in every comparison made from it.
+    if (!(std::abs(v[2]) <= 90.0)) throw InputError(path, line, "column 3: expected a latitude within +-90 deg");
+    if (!(std::abs(v[3]) <= 360.0)) throw InputError(path, line, "column 4: expected a longitude within +-360 deg");
     NavRecord r;
     r.week = static_cast<int>(v[0]);
     r.sow_s = v[1];

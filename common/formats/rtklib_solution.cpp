@@ -173,8 +173,10 @@ RtklibSolutionParser::LineKind RtklibSolutionParser::parse_line(std::string_view
     layout = Vec3(v[0], v[1], v[2]).norm() > 1e6 ? RtklibPositionLayout::kEcef : RtklibPositionLayout::kLatLonDeg;
   }
 
+  // Ranges checked before the casts: a Q or a satellite count of 1e300 does not fit an int (undefined behaviour).
+  if (!(v[3] >= 1.0 && v[3] <= 6.0) || v[3] != std::floor(v[3])) return malformed("expected Q in 1..6");
+  if (!(v[4] >= 0.0 && v[4] <= 1000.0)) return malformed("expected a satellite count in 0..1000");
   const int q = static_cast<int>(v[3]);
-  if (v[3] != q || q < 1 || q > 6) return malformed("expected Q in 1..6");
   GnssSolution s;
   s.time = normalized(utc_ ? GpsTime{time->week, time->sow_s + options_.gps_minus_utc_s} : *time);
   GnssFix& f = s.fix;

@@ -51,7 +51,7 @@ Geodetic offset_ned(const Geodetic& from, const Vec3& dr_n) {
   const Radii r = radii(from.lat_rad);
   Geodetic g = from;
   g.lat_rad += dr_n.x() / (r.meridian_m + from.h_m);
-  g.lon_rad += dr_n.y() / ((r.prime_vertical_m + from.h_m) * std::cos(from.lat_rad));
+  g.lon_rad = wrap_pi(g.lon_rad + dr_n.y() / ((r.prime_vertical_m + from.h_m) * std::cos(from.lat_rad)));
   g.h_m -= dr_n.z();
   return g;
 }

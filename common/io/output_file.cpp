@@ -1,5 +1,9 @@
 #include "common/io/output_file.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <cerrno>
 #include <cstring>
 
@@ -13,7 +17,25 @@ namespace {
 }
 }  // namespace
 
-OutputFile::OutputFile(const std::string& path) : path_(path), file_(std::fopen(path.c_str(), "wb")) {
+namespace {
+// fopen of a FIFO blocks until a reader opens it: `ldv nav --out FIFO` with nobody reading hung for ever. A FIFO
+// is opened without blocking first (ENXIO: no reader), then written as any file.
+std::FILE* open_for_writing(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0 && S_ISFIFO(st.st_mode)) {
+    const int fd = ::open(path.c_str(), O_WRONLY | O_NONBLOCK);
+    if (fd < 0) {
+      if (errno == ENXIO) throw InputError(path, 0, "a FIFO that nothing reads: start its reader first");
+      return nullptr;
+    }
+    ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+    return ::fdopen(fd, "wb");
+  }
+  return std::fopen(path.c_str(), "wb");
+}
+}  // namespace
+
+OutputFile::OutputFile(const std::string& path) : path_(path), file_(open_for_writing(path)) {
   if (!file_) throw InputError(path, 0, std::string("cannot open file for writing: ") + std::strerror(errno));
 }
 

@@ -1,5 +1,7 @@
 #include "estimator/filter/nav_filter.hpp"
 
+#include "common/formats/gnss_solution_checks.hpp"
+
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
@@ -49,9 +51,14 @@ ImuIncrement scaled(const ImuIncrement& in, double fraction) {
   return out;
 }
 
-bool finite(const NavState& s) {
+// Finite, and where a vehicle can be: a speed above any receiver's (1000 m/s) or a height beyond the plausible
+// ones is a diverged state, not navigation (a forced GNSS step 1 km away, then a fix back, once drove the
+// velocity to 8e6 m/s: garbage on every NAV after it).
+bool usable(const NavState& s) {
   return std::isfinite(s.pos.lat_rad) && std::isfinite(s.pos.lon_rad) && std::isfinite(s.pos.h_m) &&
-         s.v_n_mps.allFinite() && s.q_b_n.coeffs().allFinite();
+         s.v_n_mps.allFinite() && s.q_b_n.coeffs().allFinite() &&
+         s.v_n_mps.norm() <= gnss::kMaxPlausibleSpeed_mps && s.pos.h_m >= gnss::kMinPlausibleHeight_m &&
+         s.pos.h_m <= gnss::kMaxPlausibleHeight_m;
 }
 }  // namespace
 
@@ -97,9 +104,8 @@ void NavFilter::restart() {
 
 void NavFilter::initialize(const NavState& s, const NavStd& std) {
   // A NaN or absurd initial state would freeze the filter (every step rejected as non-finite).
-  if (!finite(s) || std::abs(s.pos.lat_rad) > 0.5 * M_PI || s.pos.h_m < -1.2e4 || s.pos.h_m > 1e6 ||
-      s.v_n_mps.norm() > 1e3 || !std::isfinite(s.t_s))
-    throw std::invalid_argument("initial state: not finite or out of range (|lat| <= 90 deg, h in [-12, 1000] km, |v| <= 1000 m/s)");
+  if (!usable(s) || std::abs(s.pos.lat_rad) > 0.5 * M_PI || !std::isfinite(s.t_s))
+    throw std::invalid_argument("initial state: not finite or out of range (|lat| <= 90 deg, h in [-1, 100] km, |v| <= 1000 m/s)");
   if (!std.pos_ned_m.allFinite() || !std.vel_n_mps.allFinite() || !std.att_rad.allFinite() ||
       std.pos_ned_m.minCoeff() < 0 || std.vel_n_mps.minCoeff() < 0 || std.att_rad.minCoeff() < 0)
     throw std::invalid_argument("initial state std: must be >= 0 and finite");
@@ -291,8 +297,8 @@ void NavFilter::process_imu(const ImuIncrement& raw) {
     c_.status |= kStatusGnssOutage;
   else
     c_.status &= ~kStatusGnssOutage;
-  if (!finite(c_.nav)) {
-    // Restore the last healthy state and open its covariance: never continue with NaN.
+  if (!usable(c_.nav)) {
+    // Restore the last healthy state and open its covariance: never continue with NaN or a diverged state.
     const std::uint32_t bits = c_.status;
     c_ = last_good_;
     c_.P *= 4.0;
@@ -782,7 +788,7 @@ void NavFilter::check_health(bool full) {
   if (ok && full) {
     c_.last_health_t_s = c_.nav.t_s;
     ok = P.allFinite() && positive_semidefinite(P);
-    if (ok && finite(c_.nav)) last_good_ = c_;
+    if (ok && usable(c_.nav)) last_good_ = c_;
   }
   if (!ok) reset_covariance();
 }

@@ -52,7 +52,7 @@ const MechanizationStep& Mechanization::step(NavState& s, const ImuIncrement& in
   const Vec3 zeta_mid = (earth::omega_ie_n(latm) + earth::omega_en_n(latm, hm, v_avg)) * dt;
   s.q_b_n = (quat_from_rotvec(-zeta_mid) * s.q_b_n * quat_from_rotvec(phi_b)).normalized();
 
-  s.pos = {lat1, lon1, h1};
+  s.pos = {lat1, wrap_pi(lon1), h1};  // across the antimeridian: back into (-180, 180] deg
   s.v_n_mps = v1;
   s.t_s = inc.t_s;
 

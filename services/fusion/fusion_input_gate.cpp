@@ -30,6 +30,9 @@ InputVerdict FusionInputGate::count(InputVerdict v) {
     case InputVerdict::kNotUsable:
       ++c_.not_usable;
       break;
+    case InputVerdict::kJump:
+      ++c_.jumps;
+      break;
   }
   return v;
 }
@@ -57,6 +60,15 @@ bool FusionInputGate::ahead_of_imu(int32_t week, double sow_s) const {
 InputVerdict FusionInputGate::check(const ldv_lcm::gnss_solution_t& m) {
   if (!is_valid(m)) return count(InputVerdict::kNotFinite);
   if (ahead_of_imu(m.gps_week, m.gps_sow_s)) return count(InputVerdict::kTooFarAhead);
+  switch (jump_gate_.check(solution_from_message(m))) {
+    case gnss::JumpVerdict::kJumpRejected:
+      return count(InputVerdict::kJump);
+    case gnss::JumpVerdict::kTimeRejected:
+      return count(InputVerdict::kNotAfterLast);
+    case gnss::JumpVerdict::kAccepted:
+    case gnss::JumpVerdict::kRestarted:
+      break;
+  }
   return InputVerdict::kAccepted;
 }
 
@@ -83,6 +95,8 @@ const char* describe(InputVerdict v) {
       return "stamped at or before the last accepted sample";
     case InputVerdict::kNotUsable:
       return "wheel speed not valid or a wheel slipping";
+    case InputVerdict::kJump:
+      return "a GNSS position jump no vehicle makes between epochs (jump gate)";
   }
   return "?";
 }

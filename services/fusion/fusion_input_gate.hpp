@@ -4,10 +4,12 @@
 //  - IMU: finite numbers (is_valid), on GPS time (unless the IMU has only host-clock stamps), not flagged
 //    as a device error by imu_acq (saturation, a failed self-test: the increments are not measurements;
 //    the filter then bridges the gap from the next good sample, as for a lost one), and stamped forward
-//    within imu_max_ahead_s of the last accepted sample (MessageTimeGate: a real jump is followed after
-//    three samples that confirm it).
-//  - GNSS: finite and plausible (is_valid), and not stamped more than gnss_max_ahead_s after the last
-//    accepted IMU sample (a fix arrives after its epoch, never long before the IMU reaches it).
+//    within imu_max_ahead_s of the last accepted sample (MessageTimeGate: a real jump is followed once the
+//    new time line has held for a second).
+//  - GNSS: finite and plausible (is_valid), not stamped more than gnss_max_ahead_s after the last
+//    accepted IMU sample (a fix arrives after its epoch, never long before the IMU reaches it), and through
+//    gnss_link's own jump gate (gnss_jump_gate.hpp: no position jump a vehicle cannot make between epochs, time
+//    going forward): whatever publishes on the bus, fusion applies the checks a receiver's link applies.
 //  - wheel speed: finite and plausible (is_valid), speeds flagged valid and no wheel slipping, and like a fix
 //    not stamped more than gnss_max_ahead_s after the last accepted IMU sample.
 // Every refusal is counted by reason.
@@ -16,6 +18,7 @@
 #include <ldv_lcm/imu_sample_t.hpp>
 #include <ldv_lcm/wheel_speed_t.hpp>
 
+#include "common/formats/gnss_jump_gate.hpp"
 #include "services/runtime/message_time_gate.hpp"
 
 namespace ldv {
@@ -24,6 +27,7 @@ struct FusionInputOptions {
   bool host_clock_imu = false;    // accept IMU samples stamped from the host clock (no PPS)
   double imu_max_ahead_s = 1.0;   // largest step between accepted IMU stamps before confirmation is needed
   double gnss_max_ahead_s = 2.0;  // how far a fix may be stamped ahead of the last accepted IMU sample
+  gnss::JumpGateOptions jump_gate;  // gnss_link's defaults
 };
 
 enum class InputVerdict {
@@ -34,17 +38,19 @@ enum class InputVerdict {
   kTooFarAhead,   // stamped ahead of the stream's time (a bad stamp)
   kNotAfterLast,  // IMU stamped at or before the last accepted sample
   kNotUsable,     // wheel speed: not flagged valid, or a wheel flagged locked or slipping (expected, not malformed)
+  kJump,          // GNSS: a position jump beyond the jump gate
 };
 
 struct FusionInputCounters {
-  int64_t not_finite = 0, not_gps_time = 0, device_error = 0, too_far_ahead = 0, not_after_last = 0, not_usable = 0;
+  int64_t not_finite = 0, not_gps_time = 0, device_error = 0, too_far_ahead = 0, not_after_last = 0, not_usable = 0,
+          jumps = 0;
   // Refused as bad input (the heartbeat's malformed count); host-clock samples are expected, not bad.
-  int64_t malformed() const { return not_finite + device_error + too_far_ahead + not_after_last; }
+  int64_t malformed() const { return not_finite + device_error + too_far_ahead + not_after_last + jumps; }
 };
 
 class FusionInputGate {
  public:
-  explicit FusionInputGate(FusionInputOptions o) : o_(o), imu_time_(o.imu_max_ahead_s) {}
+  explicit FusionInputGate(FusionInputOptions o) : o_(o), imu_time_(o.imu_max_ahead_s), jump_gate_(o.jump_gate) {}
 
   InputVerdict check(const ldv_lcm::imu_sample_t& m);
   InputVerdict check(const ldv_lcm::gnss_solution_t& m);
@@ -57,6 +63,7 @@ class FusionInputGate {
 
   FusionInputOptions o_;
   MessageTimeGate imu_time_;
+  gnss::JumpGate jump_gate_;
   FusionInputCounters c_;
 };
 

@@ -5,7 +5,7 @@
 
 #include "services/gnss_link/gnss_stream_decoder.hpp"
 #include "services/input/byte_source_options.hpp"
-#include "services/gnss_link/jump_gate.hpp"
+#include "common/formats/gnss_jump_gate.hpp"
 
 namespace ldv::gnss {
 

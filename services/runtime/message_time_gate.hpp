@@ -3,16 +3,19 @@
 // max_ahead_s after the last accepted one is refused: accepted, it would carry the stream's clock far
 // ahead and every good message after it would look old (fusion's NAV time froze until a restart). A real
 // jump (the publisher resumed after a gap) is followed by messages that continue from the new time: after
-// `confirmations` such messages in a row, each within max_ahead_s of the one before, the gate moves on.
-// Messages not after the last accepted one are refused (a stream only goes forward).
+// `confirmations` such messages in a row, each within max_ahead_s of the one before, spanning at least
+// confirm_span_s of their own time, the gate moves on. The span is what tells a new time line from a burst of
+// corrupted stamps: three bad stamps in a row that happen to agree (sow + 1000 s, 1000.01, 1000.02) span 20 ms
+// and were taken as a jump, after which every good message looked old and the stream froze. A real jump costs
+// confirm_span_s of data. Messages not after the last accepted one are refused (a stream only goes forward).
 namespace ldv {
 
 class MessageTimeGate {
  public:
   enum class Verdict { kAccepted, kTooFarAhead, kNotAfterLast };
 
-  explicit MessageTimeGate(double max_ahead_s, int confirmations = 3)
-      : max_ahead_s_(max_ahead_s), confirmations_(confirmations) {}
+  explicit MessageTimeGate(double max_ahead_s, int confirmations = 3, double confirm_span_s = 1.0)
+      : max_ahead_s_(max_ahead_s), confirmations_(confirmations), confirm_span_s_(confirm_span_s) {}
 
   // t_s: continuous time of the message (e.g. GPS week * 604800 + seconds of week).
   Verdict check(double t_s) {
@@ -20,12 +23,14 @@ class MessageTimeGate {
     if (!(t_s > last_s_)) return Verdict::kNotAfterLast;
     if (t_s - last_s_ <= max_ahead_s_) return accept(t_s);
     // Ahead: does it continue a run of messages ahead (a real jump) or start one?
-    if (run_length_ > 0 && t_s > run_last_s_ && t_s - run_last_s_ <= max_ahead_s_)
+    if (run_length_ > 0 && t_s > run_last_s_ && t_s - run_last_s_ <= max_ahead_s_) {
       ++run_length_;
-    else
+    } else {
       run_length_ = 1;
+      run_first_s_ = t_s;
+    }
     run_last_s_ = t_s;
-    if (run_length_ >= confirmations_) {
+    if (run_length_ >= confirmations_ && t_s - run_first_s_ >= confirm_span_s_) {
       ++jumps_followed_;
       return accept(t_s);
     }
@@ -46,8 +51,9 @@ class MessageTimeGate {
 
   double max_ahead_s_;
   int confirmations_;
+  double confirm_span_s_;
   bool has_last_ = false;
-  double last_s_ = 0.0, run_last_s_ = 0.0;
+  double last_s_ = 0.0, run_first_s_ = 0.0, run_last_s_ = 0.0;
   int run_length_ = 0;
   long jumps_followed_ = 0;
 };

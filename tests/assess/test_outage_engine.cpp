@@ -46,6 +46,27 @@ TEST(OutagePlan, StartsDuringManoeuvresAfterConvergenceWithoutOverlap) {
   EXPECT_EQ(manoeuvres, static_cast<int>(plan.size()));  // the drive always has a turn within a minute
 }
 
+// Issue 35, item 18: --lengths 1e-12 --recovery 0 --converge 0 never moved the plan on (below the ulp of the
+// seconds of week): 12.6 GB, then bad_alloc. An outage shorter than the GNSS interval cuts no fix: refused.
+TEST(OutagePlan, GivenAnOutageShorterThanTheGnssInterval_ThenItIsRefusedNamingTheOption) {
+  const auto& s = test::sim_drive("hg1700-typical", 900.0);
+  OutagePlanOptions o;
+  o.recovery_s = 0.0;
+  o.converge_s = 0.0;
+  try {
+    plan_outages(s.gnss, {1e-12}, s.imu.back().t_s, o);
+    FAIL() << "expected the length refused";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("--lengths"), std::string::npos) << e.what();
+  }
+  // The shortest allowed, back to back: every plan moves on (the count is bounded by the fixes).
+  const double interval_s = s.gnss[1].t_s - s.gnss[0].t_s;
+  const std::vector<OutageWindow> plan = plan_outages(s.gnss, {interval_s}, s.imu.back().t_s, o);
+  EXPECT_GT(plan.size(), 10u);
+  EXPECT_LE(plan.size(), s.gnss.size());
+  for (size_t k = 1; k < plan.size(); ++k) EXPECT_GT(plan[k].start_s, plan[k - 1].start_s);
+}
+
 TEST(OutageEngine, CheckpointRestartsMatchFullRerunsWithTheFixesRemoved) {
   const auto& s = test::sim_drive("hg1700-typical", 700.0);
   const OutageRun fast = outages(s, {60.0, 120.0}, false);

@@ -1,6 +1,7 @@
 // Issue 13 (file readers and writers): each defect reproduced and its fix checked, against values computed
 // here independently of the readers.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
@@ -412,7 +413,10 @@ std::string kfgins_text(const std::string& extra) {
          extra;
 }
 std::string config_error(const std::string& extra) {
-  const std::string p = write_temp("cfg.yaml", kfgins_text(extra));
+  // A file of its own per case and process: ctest runs each test case as its own process, in parallel.
+  const std::string p = write_temp("cfg_" + std::to_string(::getpid()) + "_" +
+                                       std::to_string(std::hash<std::string>{}(extra)) + ".yaml",
+                                   kfgins_text(extra));
   return error_of([&] { load_kfgins_config(p); });
 }
 }  // namespace
@@ -429,7 +433,7 @@ TEST(KfGinsConfigSchema, GivenADuplicateKey_ThenBothLinesAreNamed) {
 
 TEST(KfGinsConfigSchema, GivenASectionOfTheWrongType_ThenTheErrorNamesTheFileAndTheSection) {
   for (const std::string v : {"[1, 2, 3]", "hello", "5"})
-    EXPECT_NE(config_error("ldv: " + v + "\n").find("cfg.yaml:14: key 'ldv': expected a section of keys"),
+    EXPECT_NE(config_error("ldv: " + v + "\n").find(".yaml:14: key 'ldv': expected a section of keys"),
               std::string::npos)
         << config_error("ldv: " + v + "\n");
   const std::string p = write_temp("cfg_noise.yaml", "imupath: a\ngnsspath: b\nimunoise: 5\n");

@@ -61,3 +61,31 @@ TEST(FreeInertial, TenMinutesPerfectSensorsOnTurnsAndStops) {
 
 }  // namespace
 }  // namespace ldv::est
+
+namespace ldv::est {
+// Issue 35, item 26: a drive across the antimeridian was written at longitude 180.003 deg. Longitude stays in
+// (-180, 180] and the track stays continuous across it (200 m east in 10 s at 20 m/s).
+TEST(FreeInertial, GivenADriveEastAcrossTheAntimeridian_ThenLongitudeWrapsAndTheTrackIsContinuous) {
+  NavState s;
+  s.t_s = 1000.0;
+  s.pos = {0.0, 179.9995 * kDegToRad, 10.0};
+  s.v_n_mps = Vec3(0.0, 20.0, 0.0);
+  const Geodetic start = s.pos;
+  Mechanization mech;
+  mech.reset(s);
+  const double g = earth::gravity_n(s.pos.lat_rad, s.pos.h_m).z();
+  for (int k = 1; k <= 1000; ++k) {
+    ImuIncrement inc;
+    inc.t_s = 1000.0 + 0.01 * k;
+    inc.dt_s = 0.01;
+    inc.dvel_b_mps = Vec3(0.0, 0.0, -g * 0.01);
+    mech.step(s, inc);
+    ASSERT_GT(s.pos.lon_rad, -kPi);
+    ASSERT_LE(s.pos.lon_rad, kPi);
+  }
+  EXPECT_LT(s.pos.lon_rad, 0.0) << "past 180 deg: on the western side";
+  const Vec3 moved = earth::ned_between(start, s.pos);
+  EXPECT_NEAR(moved.y(), 200.0, 5.0);
+  EXPECT_NEAR(moved.x(), 0.0, 5.0);
+}
+}  // namespace ldv::est

@@ -15,6 +15,7 @@
 
 #include "cli_run.hpp"
 #include "common/bus/lcm_log_reader.hpp"
+#include "common/bus/message_conversions.hpp"
 #include "common/formats/kfgins_files.hpp"
 #include "common/geo/earth_model.hpp"
 #include "common/io/atomic_file.hpp"
@@ -298,6 +299,24 @@ TEST(LcmLogFaults, CorruptLengthsAreSkippedAndEverythingAfterThemIsRead) {
   EXPECT_THROW(LcmLogReader("/dev/zero"), InputError);
 }
 
+// Issue 35, item 30: a 24000-event log whose event 12000 says 2 GB lost the 12000 after it (reported). The reader
+// resynchronises on the next sync word: 23999 events come back, one counted corrupt, none after it lost.
+TEST(LcmLogFaults, GivenA2GbLengthInTheMiddleOfALongLog_ThenEveryEventAfterItIsRead) {
+  const fs::path p = temp_dir("lcmlog") / "long.lcm";
+  {
+    std::ofstream f(p, std::ios::binary);
+    const std::string data(100, '\x5a');
+    for (int k = 0; k < 24000; ++k) put_event(f, k, "IMU", data, k == 12000 ? 0x7fffffffLL : -1);
+  }
+  LcmLogReader r(p.string());
+  LcmLogEvent ev;
+  long events = 0, last_number = -1;
+  while (r.next(ev)) ++events, last_number = ev.event_number;
+  EXPECT_EQ(events, 23999);
+  EXPECT_EQ(last_number, 23999);
+  EXPECT_EQ(r.corrupt_events(), 1);
+}
+
 }  // namespace ldv
 
 namespace ldv {
@@ -314,6 +333,110 @@ TEST(WriterFaults, AnOutputPathThatIsNotARegularFileIsNeverReplaced) {
   EXPECT_TRUE(fs::is_fifo(fs::symlink_status(fifo)));
   EXPECT_TRUE(fs::is_symlink(fs::symlink_status(link)));
   EXPECT_TRUE(write_file_atomically((dir / "plain.txt").string(), "text"));
+}
+
+}  // namespace ldv
+
+namespace ldv {
+
+// Issue 35, item 25: `ldv export` of fixes without a velocity wrote 13 columns with a velocity std of 0 (ldv nav
+// then dropped every line), and a log across the week rollover came out sorted by seconds of week only.
+TEST(LcmLogFaults, GivenALogAcrossAWeekRolloverWithoutGnssVelocity_ThenTheExportIsInTimeOrderAndReadable) {
+  const fs::path p = temp_dir("export_rollover") / "run.lcm";
+  {
+    std::ofstream f(p, std::ios::binary);
+    int64_t n = 0;
+    for (int k = 0; k < 2000; ++k) {  // 10 s at 200 Hz from week 2300 sow 604795
+      const double t = 604795.0 + 0.005 * (k + 1);
+      const int week = t >= 604800.0 ? 2301 : 2300;
+      ImuIncrement s;
+      s.t_s = t - (week - 2300) * 604800.0;
+      s.dt_s = 0.005;
+      s.dvel_b_mps = Vec3(0, 0, -0.049);
+      const ldv_lcm::imu_sample_t m = message_from_imu(s, week, k);
+      std::string data(static_cast<size_t>(m.getEncodedSize()), '\0');
+      m.encode(data.data(), 0, static_cast<int>(data.size()));
+      put_event(f, n++, "IMU", data);
+      if (k % 40 == 39) {
+        GnssFix g;
+        g.t_s = s.t_s;
+        g.pos = {0.53, 1.99, 20.0};
+        g.pos_std_ned_m = Vec3(0.01, 0.01, 0.02);
+        const ldv_lcm::gnss_solution_t gm = message_from_gnss(g, week, k / 40);
+        std::string gd(static_cast<size_t>(gm.getEncodedSize()), '\0');
+        gm.encode(gd.data(), 0, static_cast<int>(gd.size()));
+        put_event(f, n++, "GNSS_SOLUTION", gd);
+      }
+    }
+  }
+  const fs::path out = p.parent_path() / "export";
+  const auto ex = run_ldv({"export", p.string(), "--out", out.string()});
+  ASSERT_EQ(ex.exit_code, 0) << ex.output;
+  GnssReadReport rep;
+  const auto gnss = read_kfgins_gnss((out / "gnss.txt").string(), &rep);
+  EXPECT_EQ(rep.columns, 7) << "no velocity: 7 columns";
+  EXPECT_EQ(gnss.size(), 50u);
+  EXPECT_EQ(rep.dropped.total(), 0);
+  const auto imu = read_kfgins_imu((out / "imu.txt").string());
+  ASSERT_EQ(imu.size(), 2000u);
+  for (size_t i = 1; i < imu.size(); ++i) ASSERT_GT(imu[i].t_s, imu[i - 1].t_s) << i;
+  EXPECT_NEAR(imu.back().t_s, 604805.0, 1e-6) << "seconds of the first week, on past the rollover";
+}
+
+// Issue 35, item 31: options and files that ran silently, printed inf, or hung.
+TEST(CliFaults, GivenTermsWithNoKnownLetter_ThenAllanRefusesThemByName) {
+  const fs::path csv = write_rate_csv(temp_dir("allan_xyz"), 1e-3, 3000);
+  const auto r = run_ldv({"allan", csv.string(), "--time-column", "t", "--terms", "XYZ", "--curve-only"});
+  EXPECT_NE(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("--terms"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("'X' is not a noise term"), std::string::npos) << r.output;
+}
+
+TEST(CliFaults, GivenAnAlphaOrBandwidthWithoutMeaning_ThenDiagnoseRefusesNamingTheOption) {
+  for (const auto& [option, value] : std::vector<std::pair<std::string, std::string>>{
+           {"--alpha", "1e-300"}, {"--alpha", "1"}, {"--bandwidth", "1e-9"}}) {
+    const auto r = run_ldv({"diagnose", "--kfgins-config", "/nonexistent.yaml", option, value});
+    EXPECT_NE(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find(option), std::string::npos) << option << " " << value << ": " << r.output;
+  }
+}
+
+TEST(CliFaults, GivenASolutionRowAtLatitude1e308_ThenCompareNamesTheLineInsteadOfPrintingInf) {
+  const fs::path dir = temp_dir("compare_lat");
+  std::string rows;
+  char b[200];
+  for (int k = 0; k < 20; ++k) {
+    std::snprintf(b, sizeof b, "2300 %.3f %s 114.3 20.0 0 0 0 0 0 0\n", 1000.0 + k, k == 10 ? "1e308" : "30.5");
+    rows += b;
+  }
+  std::ofstream(dir / "a.nav") << rows;
+  std::string truth;
+  for (int k = 0; k < 20; ++k) {
+    std::snprintf(b, sizeof b, "2300 %.3f 30.5 114.3 20.0 0 0 0 0 0 0\n", 1000.0 + k);
+    truth += b;
+  }
+  std::ofstream(dir / "b.nav") << truth;
+  const auto r = run_ldv({"compare", (dir / "a.nav").string(), (dir / "b.nav").string()});
+  EXPECT_NE(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("a.nav:11: column 3: expected a latitude"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("inf"), std::string::npos) << r.output;
+}
+
+TEST(CliFaults, GivenAFifoWithNoReaderAsOutput_ThenNavFailsAtOnceNamingIt) {
+  const fs::path dir = temp_dir("nav_fifo");
+  sim::SimRequest req;
+  req.grade = "hg1700-typical";
+  req.duration_s = 30.0;
+  req.gnss_rate_hz = 5.0;
+  sim::SimResult s = sim::simulate(req);
+  sim::write_outputs(s, (dir / "sim").string());
+  const fs::path fifo = dir / "out.fifo";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  const auto r = run_ldv({"nav", "--kfgins-config", (dir / "sim" / "kfgins.yaml").string(), "--out", fifo.string()},
+                         30.0);
+  EXPECT_FALSE(r.timed_out) << "hung on the FIFO";
+  EXPECT_NE(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("a FIFO that nothing reads"), std::string::npos) << r.output;
 }
 
 }  // namespace ldv

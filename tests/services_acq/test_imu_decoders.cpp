@@ -2,6 +2,9 @@
 // simulator uses) and the MicroStrain 3DM-GX2 records.
 #include <gtest/gtest.h>
 
+#include <limits>
+#include <vector>
+
 #include "services/imu_acq/protocols/gx2_decoder.hpp"
 #include "services/imu_acq/protocols/tsu_decoder.hpp"
 
@@ -108,4 +111,21 @@ TEST(Gx2Decoder, GivenDeltaRecords_ThenIncrementsAsSentInSi) {
   EXPECT_NEAR(s.dtheta_b_rad.x(), 1e-3, 1e-9);
   EXPECT_NEAR(s.dvel_b_mps.z(), -0.0980665, 1e-8);
   EXPECT_EQ(s.counter, 1000u);
+}
+
+// Found by the fuzzer (tests/fuzz/corpus/fuzz_imu_device/finding_gx2_nan_float): a record whose floats are NaN or
+// infinite passes the 16-bit sum; its sample was handed out as a measurement. Now flagged as the device's error,
+// its increments zeroed, its timer kept.
+TEST(Gx2Decoder, GivenARecordWithANanOrInfiniteFloat_ThenTheSampleIsFlaggedAsADeviceError) {
+  for (const float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+    const auto r = gx2::encode_record(gx2::kDeltaAngleVelocity, {1e-3f, bad, 0}, {0, 0, -0.01f}, 2000);
+    Gx2Decoder d;
+    std::vector<DeviceSample> out;
+    d.on_sample([&](const DeviceSample& x) { out.push_back(x); });
+    d.feed(r);
+    ASSERT_EQ(out.size(), 1u);
+    EXPECT_TRUE(out[0].device_error);
+    EXPECT_TRUE(out[0].dtheta_b_rad.allFinite() && out[0].dvel_b_mps.allFinite());
+    EXPECT_EQ(out[0].counter, 2000u);
+  }
 }

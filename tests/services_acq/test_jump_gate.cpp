@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "common/geo/earth_model.hpp"
-#include "services/gnss_link/jump_gate.hpp"
+#include "common/formats/gnss_jump_gate.hpp"
 
 using namespace ldv;
 using namespace ldv::gnss;

@@ -31,17 +31,27 @@ TEST(FusionInputGate, GivenOneImuMessageStamped1000sAhead_ThenItIsRefusedAndEver
   EXPECT_EQ(gate.counters().malformed(), 1);
 }
 
-TEST(FusionInputGate, GivenARealForwardJump_ThenTheGateFollowsAfterThreeConfirmingSamples) {
+TEST(FusionInputGate, GivenARealForwardJump_ThenTheGateFollowsOnceTheNewTimeLineHeldForASecond) {
   FusionInputGate gate({});
   for (int k = 0; k < 10; ++k) ASSERT_EQ(gate.check(imu_at(1000.0 + 0.01 * k)), InputVerdict::kAccepted);
-  // The IMU resumes 30 s later (imu_acq restarted): the first two are held back, the third confirms.
-  EXPECT_EQ(gate.check(imu_at(1030.00)), InputVerdict::kTooFarAhead);
-  EXPECT_EQ(gate.check(imu_at(1030.01)), InputVerdict::kTooFarAhead);
-  EXPECT_EQ(gate.check(imu_at(1030.02)), InputVerdict::kAccepted);
-  EXPECT_EQ(gate.check(imu_at(1030.03)), InputVerdict::kAccepted);
+  // The IMU resumes 30 s later (imu_acq restarted): held back until its new time line has held for 1 s.
+  int held = 0;
+  for (int k = 0; k < 100; ++k) held += gate.check(imu_at(1030.00 + 0.01 * k)) == InputVerdict::kTooFarAhead;
+  EXPECT_EQ(held, 100);
+  EXPECT_EQ(gate.check(imu_at(1031.00)), InputVerdict::kAccepted);
+  EXPECT_EQ(gate.check(imu_at(1031.01)), InputVerdict::kAccepted);
   // Stamps at or before the last accepted one are refused (a stream only goes forward).
-  EXPECT_EQ(gate.check(imu_at(1030.03)), InputVerdict::kNotAfterLast);
+  EXPECT_EQ(gate.check(imu_at(1031.01)), InputVerdict::kNotAfterLast);
   EXPECT_EQ(gate.check(imu_at(1000.5)), InputVerdict::kNotAfterLast);
+}
+
+// Issue 35, item 4 (and what the fuzzer's streams found beside it): a few corrupted stamps that agree with each
+// other (sow + 1000 s, + 1000.01, + 1000.02) are not a new time line; the stream goes on at its own time.
+TEST(FusionInputGate, GivenThreeAgreeingCorruptedStamps_ThenTheyAreRefusedAndTheStreamGoesOn) {
+  FusionInputGate gate({});
+  for (int k = 0; k < 10; ++k) ASSERT_EQ(gate.check(imu_at(1000.0 + 0.01 * k)), InputVerdict::kAccepted);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(gate.check(imu_at(2000.10 + 0.01 * k)), InputVerdict::kTooFarAhead);
+  for (int k = 13; k < 200; ++k) ASSERT_EQ(gate.check(imu_at(1000.0 + 0.01 * k)), InputVerdict::kAccepted) << k;
 }
 
 TEST(FusionInputGate, GivenDeviceErrorSamples_ThenTheyAreRefusedAndCounted) {

@@ -180,3 +180,19 @@ TEST(RtklibSolution, GivenNonPositiveOrNonFiniteSigmas_ThenTheLineIsMalformed) {
         << sigmas;
   }
 }
+
+// Found by the fuzzer (tests/fuzz/corpus/fuzz_rtklib_files/finding_q_cast_overflow): a Q or a satellite count of
+// 1e300 was cast to int (undefined behaviour). Now a malformed line by reason.
+TEST(RtklibSolution, GivenAQOrSatelliteCountBeyondAnInt_ThenTheLineIsMalformed) {
+  RtklibSolutionParser parser;
+  GnssSolution s;
+  std::string why;
+  EXPECT_EQ(parser.parse_line("2300 1000.000 35.1 136.9 104.8 1e300 10 0.01 0.01 0.02 0 0 0 0.0 9.9", s, &why),
+            RtklibSolutionParser::LineKind::kMalformed);
+  EXPECT_EQ(why, "expected Q in 1..6");
+  EXPECT_EQ(parser.parse_line("2300 1000.000 35.1 136.9 104.8 1 1e300 0.01 0.01 0.02 0 0 0 0.0 9.9", s, &why),
+            RtklibSolutionParser::LineKind::kMalformed);
+  EXPECT_EQ(why, "expected a satellite count in 0..1000");
+  EXPECT_EQ(parser.parse_line("2300 1000.000 35.1 136.9 104.8 1 10 0.01 0.01 0.02 0 0 0 0.0 9.9", s, &why),
+            RtklibSolutionParser::LineKind::kSolution);
+}

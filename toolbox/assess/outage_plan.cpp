@@ -56,6 +56,16 @@ std::vector<OutageWindow> plan_outages(const std::vector<GnssFix>& gnss, const s
           "manoeuvre acceleration must be >= 0 m/s^2 and finite");
   std::vector<OutageWindow> plan;
   if (gnss.size() < 3) return plan;
+  // An outage shorter than the fixes' interval removes no fix, and one below the resolution of the run's
+  // seconds of week (1e-12 s) never moved the plan on: refused as the user gave it.
+  std::vector<double> intervals;
+  for (size_t k = 1; k < gnss.size(); ++k) intervals.push_back(gnss[k].t_s - gnss[k - 1].t_s);
+  std::nth_element(intervals.begin(), intervals.begin() + intervals.size() / 2, intervals.end());
+  const double gnss_interval_s = intervals[intervals.size() / 2];
+  for (const double length : lengths_s)
+    require(length >= gnss_interval_s, "--lengths " + std::to_string(length) +
+                                           " s: shorter than the GNSS interval (" + std::to_string(gnss_interval_s) +
+                                           " s), so no fix would be cut; give lengths of at least that");
   const std::vector<TrackMotion> motion = track_motion(gnss);
   for (const double length : lengths_s) {
     double earliest = gnss.front().t_s + o.converge_s;
@@ -83,7 +93,8 @@ std::vector<OutageWindow> plan_outages(const std::vector<GnssFix>& gnss, const s
       }
       if (start->t_s + length > t_end_s) break;
       plan.push_back({length, start->t_s, manoeuvre});
-      earliest = start->t_s + length + o.recovery_s;
+      // Always on past this start (a length and recovery below the time's resolution would not be).
+      earliest = std::max(start->t_s + length + o.recovery_s, std::nextafter(start->t_s, 1e300));
     }
   }
   std::sort(plan.begin(), plan.end(), [](const OutageWindow& a, const OutageWindow& b) {

@@ -66,6 +66,11 @@ void run_allan(const AllanArgs& a) {
   opt.threads = a.threads;
   if (a.max_tau > 0) opt.max_factor = static_cast<long>(a.max_tau / channels.front().tau0_s);
   FitOptions& f = opt.fit_options;
+  // A letter that names no term (--terms XYZ) ran silently with none of the user's: refused by name.
+  for (const char c : a.terms)
+    if (std::string("QNBKR").find(c) == std::string::npos)
+      throw CLI::ValidationError("--terms", std::string("'") + c + "' is not a noise term: expected letters of QNBKR "
+                                 "(Q quantisation, N white noise, B bias instability, K rate random walk, R ramp)");
   f.q = a.terms.find('Q') != std::string::npos;
   f.n = a.terms.find('N') != std::string::npos;
   f.b = a.terms.find('B') != std::string::npos;

@@ -14,6 +14,7 @@
 #include "common/formats/kfgins_files.hpp"
 #include "common/io/atomic_file.hpp"
 #include "common/io/input_error.hpp"
+#include "tools/ldv/cli_checks.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "toolbox/diagnose/diagnosis.hpp"
 #include "toolbox/diagnose/plots.hpp"
@@ -138,8 +139,12 @@ void add_diagnose_command(CLI::App& app) {
   c->add_option("--truth", args->truth, "truth .nav (KF-GINS layout, IMU centre): navigation error before/after");
   c->add_option("--plots", args->plots, "write gnuplot PNGs (and their data and scripts) into this folder");
   c->add_option("--max-add", args->max_add, "stepwise: add at most this many effects (default 3; --iterate: until done)")->check(CLI::Range(0, 20));
-  c->add_option("--alpha", args->alpha, "family-wise false-alarm rate of the screening (default 0.05)");
-  c->add_option("--bandwidth", args->bandwidth_s, "long-run variance bandwidth [s] (default 120: > GNSS error correlation)");
+  // A rate of 1 names every effect, 1e-300 none (its quantile is not finite); a bandwidth below an IMU interval or
+  // beyond a week has no meaning for the GNSS errors' correlation.
+  c->add_option("--alpha", args->alpha, "family-wise false-alarm rate of the screening (default 0.05)")
+      ->check(cli::finite_range(1e-12, 0.5));
+  c->add_option("--bandwidth", args->bandwidth_s, "long-run variance bandwidth [s] (default 120: > GNSS error correlation)")
+      ->check(cli::finite_range(1e-3, 604800.0));
   c->add_flag("--iterate", args->iterate,
               "diagnose, add the top confirmed effect with its estimate, rerun, until the model is consistent or nothing "
               "more is confirmed (JSON steps and the report's step table show the fall)");

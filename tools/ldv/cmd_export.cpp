@@ -1,6 +1,7 @@
 // `ldv export LOG --out DIR`: an LCM log (lcm-logger) -> the interchange files: imu.txt and gnss.txt
 // (KF-GINS, from IMU and GNSS_SOLUTION), nav.nav (from NAV) and tspi.nav (from TSPI), so every
 // offline tool (ldv nav, diagnose, compare, report) reads what the vehicle recorded.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -11,6 +12,7 @@
 #include "common/bus/message_conversions.hpp"
 #include "common/formats/kfgins_files.hpp"
 #include "common/io/input_error.hpp"
+#include "common/time/gps_time.hpp"
 #include "tools/ldv/command_registry.hpp"
 
 namespace ldv::cli {
@@ -40,6 +42,8 @@ void add_export_command(CLI::App& app) {
     std::vector<GnssFix> gnss;
     std::unique_ptr<NavWriter> nav, tspi;
     long malformed = 0, unlocked = 0, nav_n = 0, tspi_n = 0, corrupt_events = 0;
+    // KF-GINS files count seconds of the first week on past 604800 after a rollover: in time order across it.
+    ContinuousGpsTime gps_time;
     for (const std::string& path : logs) {
       LcmLogReader log(path);
       LcmLogEvent ev;
@@ -49,10 +53,12 @@ void add_export_command(CLI::App& app) {
           if (m.decode(ev.data.data(), 0, static_cast<int>(ev.data.size())) < 0 || !is_valid(m)) { ++malformed; continue; }
           if (!has_gps_time(m)) { ++unlocked; continue; }  // stamped before imu_acq locked to PPS
           imu.push_back(imu_from_message(m));
+          imu.back().t_s = gps_time.seconds(m.gps_week, m.gps_sow_s);
         } else if (ev.channel == "GNSS_SOLUTION") {
           ldv_lcm::gnss_solution_t m;
           if (m.decode(ev.data.data(), 0, static_cast<int>(ev.data.size())) < 0 || !is_valid(m)) { ++malformed; continue; }
           gnss.push_back(gnss_from_message(m));
+          gnss.back().t_s = gps_time.seconds(m.gps_week, m.gps_sow_s);
         } else if (ev.channel == "NAV") {
           ldv_lcm::nav_state_t m;
           if (m.decode(ev.data.data(), 0, static_cast<int>(ev.data.size())) < 0) { ++malformed; continue; }
@@ -94,7 +100,11 @@ void add_export_command(CLI::App& app) {
     imu.swap(filled);
     if (bridged > 0) std::fprintf(stderr, "ldv export: %ld lost IMU samples bridged with their successor's rates\n", bridged);
     if (!imu.empty()) write_kfgins_imu((fs::path(out_dir) / "imu.txt").string(), imu);
-    if (!gnss.empty()) write_kfgins_gnss((fs::path(out_dir) / "gnss.txt").string(), gnss, true);
+    // 13 columns only when every fix has a velocity: a fix without one has no velocity std to write (a 0 there
+    // made `ldv nav` drop every line as "std not positive").
+    const bool all_with_velocity =
+        std::all_of(gnss.begin(), gnss.end(), [](const GnssFix& g) { return g.has_velocity; });
+    if (!gnss.empty()) write_kfgins_gnss((fs::path(out_dir) / "gnss.txt").string(), gnss, all_with_velocity);
     std::fprintf(stderr,
                  "ldv export: %zu IMU, %zu GNSS, %ld NAV, %ld TSPI records (%ld malformed messages, %ld corrupt log "
                  "events skipped, %ld IMU stamped before the PPS lock skipped) -> %s\n",

@@ -44,6 +44,13 @@ void Gx2Decoder::on_record(const gx2::Record& r) {
     }
   }
   last_timer_ = r.timer;
+  // A NaN or infinity passes the record's 16-bit sum: no measurement, but its timer is good. Flagged as the
+  // device's error (imu_acq's status bit 1: navigation bridges it as a lost sample), its increments zeroed.
+  if (!s.dtheta_b_rad.allFinite() || !s.dvel_b_mps.allFinite()) {
+    s.device_error = true;
+    s.dtheta_b_rad.setZero();
+    s.dvel_b_mps.setZero();
+  }
   if (on_sample_) on_sample_(s);
 }
 

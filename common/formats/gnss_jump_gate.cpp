@@ -1,4 +1,4 @@
-#include "services/gnss_link/jump_gate.hpp"
+#include "common/formats/gnss_jump_gate.hpp"
 
 #include "common/geo/earth_model.hpp"
 
