@@ -238,10 +238,13 @@ std::vector<ImuIncrement> read_tagged_imu_csv(const std::string& csv_path, const
 
   std::vector<ImuIncrement> out;
   out.reserve(raw.size() - 1);
+  // Seconds of the first sample's week, going on past 604800 after a rollover (the KF-GINS convention): the seconds
+  // of each sample's own week went back by a week there (found by the fuzzer: a counter that ran 16777 s on).
+  const double first_week_s = GpsTime::from_total_seconds(offset + rate * raw[1].counter_s).week * kSecondsPerWeek;
   for (size_t k = 1; k < raw.size(); ++k) {
     const double t1 = offset + rate * raw[k].counter_s;
     ImuIncrement inc;
-    inc.t_s = GpsTime::from_total_seconds(t1).sow_s;
+    inc.t_s = t1 - first_week_s;
     inc.dt_s = rate * (raw[k].counter_s - raw[k - 1].counter_s);  // not t1 - t0: 1e9 s absolute times lose digits
     inc.dtheta_b_rad = 0.5 * (raw[k - 1].w_b_rad_s + raw[k].w_b_rad_s) * inc.dt_s;
     inc.dvel_b_mps = 0.5 * (raw[k - 1].f_b_mps2 + raw[k].f_b_mps2) * inc.dt_s;

@@ -500,3 +500,25 @@ TEST(KfGinsConfigSchema, GivenAnInitialStateOrNoiseBeyondAnySensor_ThenTheKeyIsN
     EXPECT_NE(e.find(expected), std::string::npos) << replacement << " -> " << e;
   }
 }
+
+// Found by the fuzzer (tests/fuzz/corpus/fuzz_rtklib_files/finding_tagged_csv_week_end): a tagged CSV whose samples
+// cross the end of a GPS week went back by 604800 s there (each sample got the seconds of its own week).
+TEST(TaggedCsvWeekEnd, GivenSamplesAcrossTheEndOfAGpsWeek_ThenTimesGoOnPastTheWeek) {
+  std::string csv, tag = "TIMETAG RTKLIB EX";
+  tag.resize(60, '\0');
+  put_u32(tag, 0);
+  const double week_end_unix_s = kGpsEpochInUnixSeconds + 2300.0 * kSecondsPerWeek + kSecondsPerWeek;
+  put_u32(tag, static_cast<uint32_t>(week_end_unix_s - 1.0));  // the log starts 1 s before the week ends
+  const double fraction = 0.0;
+  tag.append(reinterpret_cast<const char*>(&fraction), 8);
+  for (int i = 0; i < 300; ++i) {  // 3 s at 100 Hz
+    csv += "0.0,0.0,1.0,0.0,0.0,0.0," + std::to_string(10 * i) + "\n";
+    put_u32(tag, static_cast<uint32_t>(10 * i + 3));
+    put_u32(tag, static_cast<uint32_t>(csv.size()));
+  }
+  const auto imu = read_tagged_imu_csv(write_temp("week_end.csv", csv), write_temp("week_end.csv.tag", tag));
+  ASSERT_GT(imu.size(), 250u);
+  for (size_t i = 1; i < imu.size(); ++i) ASSERT_GT(imu[i].t_s, imu[i - 1].t_s) << i;
+  EXPECT_LT(imu.front().t_s, kSecondsPerWeek);
+  EXPECT_GT(imu.back().t_s, kSecondsPerWeek) << "seconds of the first week, on past its end";
+}
