@@ -1,5 +1,6 @@
 #include "toolbox/diagnose/diagnosis.hpp"
 
+#include <limits>
 #include <stdexcept>
 #include <algorithm>
 #include <cmath>
@@ -62,6 +63,10 @@ constexpr double kOpenGateProbability = 1.0 - 1e-12;  // NIS gate ~ 60: only num
 }  // namespace
 
 // The model as it ends (with what was added) passes its check, and the last step found nothing more to add.
+bool Diagnosis::self_calibration_applied() const {
+  return std::any_of(self_calibration.begin(), self_calibration.end(), [](const SelfCalibration& c) { return c.applied; });
+}
+
 bool Diagnosis::consistent() const {
   return !steps.empty() && steps.back().added.empty() && steps.back().check.consistent();
 }
@@ -83,6 +88,36 @@ void measure_imu_noise(const DiagnoseInputs& in, est::FilterOptions& model, Diag
   model.arw_rad_per_sqrt_s *= std::sqrt(d.imu_noise_scale.gyro);
   model.vrw_mps_per_sqrt_s *= std::sqrt(d.imu_noise_scale.accel);
   d.imu_noise_applied = true;
+}
+
+// The noise as installed and the turn-on gyro bias the start took out: estimated by the system, not by the model.
+void add_self_calibration_findings(Diagnosis& d) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (d.imu_noise_standstill_s > 0.0) {
+    SelfCalibration c;
+    c.name = "imu_noise";
+    c.estimate_si = Eigen::Vector2d(d.imu_noise_scale.gyro, d.imu_noise_scale.accel);
+    c.sigma_si = Eigen::Vector2d(nan, nan);
+    c.unit = "x the configured PSD (gyro, accel)";
+    c.applied = d.imu_noise_applied;
+    char b[160];
+    std::snprintf(b, sizeof b, "white noise measured over a %.0f s GNSS standstill; %s", d.imu_noise_standstill_s,
+                  c.applied ? "the diagnosis ran with it" : "within the configuration's, not applied");
+    c.note = b;
+    d.self_calibration.push_back(c);
+  }
+  const Vec3 seed = d.before.summary.gyro_bias_seed_rad_s;
+  if (!seed.isZero()) {
+    SelfCalibration c;
+    c.name = "gyro_bias";
+    c.estimate_si = seed;
+    c.sigma_si = Vec3::Constant(nan);
+    c.unit = "deg/h";
+    c.print_scale = kRadToDeg * 3600.0;
+    c.applied = true;
+    c.note = "turn-on bias measured over the start's static window and taken out of every sample";
+    d.self_calibration.push_back(c);
+  }
 }
 
 }  // namespace
@@ -156,6 +191,7 @@ Diagnosis diagnose(const DiagnoseInputs& in, const DiagnoseOptions& opt) {
       if (e.name == name) d.added_estimates.push_back(e);
   d.truth_before = truth_error(d.before, d.labels_before, in.truth, opt.truth_skip_s);
   d.truth_after = truth_error(d.after, d.labels_after, in.truth, opt.truth_skip_s);
+  add_self_calibration_findings(d);
   d.cpu_s = cpu_seconds() - cpu0;
   return d;
 }

@@ -29,6 +29,19 @@ struct DiagnoseOptions {
   bool verbose = false;          // progress on stderr
 };
 
+// What the system estimated on its own, outside the model under test (issue 36: "self-calibration reports what
+// it found"): the IMU latency taken out of the stamps, the installed IMU noise, the turn-on gyro bias the start
+// took out. A finding, with its value and sigma, whether or not it was applied: a residual it cleaned is not
+// evidence that the model is consistent.
+struct SelfCalibration {
+  std::string name;                        // effect vocabulary (docs/effects.md): time_offset, imu_noise, gyro_bias
+  Eigen::VectorXd estimate_si, sigma_si;   // SI (imu_noise: PSD factors); sigma NaN where none is known
+  std::string unit;                        // how the text report prints it (ms, x, deg/h)
+  double print_scale = 1.0;                // SI -> unit
+  bool applied = false;
+  std::string note;                        // what it is and what was done with it, in words
+};
+
 // One stepwise round: the model as it was, what the screening found, what the reruns said.
 struct DiagnosisStep {
   std::vector<std::string> model_effects;
@@ -63,6 +76,10 @@ struct Diagnosis {
   double imu_noise_standstill_s = 0.0;  // the standstill it was measured over (0: none found)
   bool imu_noise_applied = false;
   ModelCheck configured_check;
+  // Every self-calibration finding (diagnose() adds the noise and the turn-on bias; `ldv diagnose` adds what the
+  // input loading estimated, e.g. the IMU latency).
+  std::vector<SelfCalibration> self_calibration;
+  bool self_calibration_applied() const;
   bool consistent() const;  // the final model passes its check and the last step adds nothing
 };
 

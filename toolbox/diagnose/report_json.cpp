@@ -154,6 +154,16 @@ std::string diagnosis_json(const Diagnosis& d) {
                                 ", \"imu_noise\": \"configured\", \"added\": null, \"estimate\": null, \"sigma\": null, " +
                                 fit_json(d.configured_check) + "},\n    "
                           : std::string();
+  // What the system estimated on its own (time_offset: the IMU latency taken out; imu_noise; gyro_bias: the
+  // turn-on bias): issue 36's contract, {name, estimate, sigma, applied} with the effect vocabulary's names, SI.
+  o << "  \"self_calibration\": "
+    << list(d.self_calibration.size(), [&](size_t i) {
+         const SelfCalibration& c = d.self_calibration[i];
+         return "{\"name\": " + str(c.name) + ", \"estimate\": " + vec(c.estimate_si) + ", \"sigma\": " +
+                vec(c.sigma_si) + ", \"applied\": " + (c.applied ? "true" : "false") + ", \"note\": " + str(c.note) +
+                "}";
+       })
+    << ",\n";
   o << "  \"imu_noise\": {\"psd_scale\": " << num(d.imu_noise_scale.larger())
     << ", \"gyro_psd_scale\": " << num(d.imu_noise_scale.gyro) << ", \"accel_psd_scale\": " << num(d.imu_noise_scale.accel)
     << ", \"applied\": "

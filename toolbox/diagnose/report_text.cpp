@@ -104,7 +104,25 @@ std::string why_nothing(const Diagnosis& d) {
   if (!first.check.consistent())
     return ": the model does not fit the measurements (see the model check) and no candidate effect explains it; "
            "look at the noise model and the untested effects";
+  if (d.self_calibration_applied()) {
+    std::string what;
+    for (const SelfCalibration& c : d.self_calibration)
+      if (c.applied) what += (what.empty() ? "" : ", ") + c.name;
+    return " (the model is consistent with the data once the system's own calibration took out " + what +
+           ": see Self-calibration above)";
+  }
   return " (the model is consistent with the data)";
+}
+
+// What the system estimated on its own (ldv diagnose's findings beside the model's): value, sigma, applied.
+void print_self_calibration(std::ostream& out, const Diagnosis& d) {
+  if (d.self_calibration.empty()) return;
+  out << "  Self-calibration (estimated by the system on its own, outside the model under test):\n";
+  for (const SelfCalibration& c : d.self_calibration) {
+    out << "    " << c.name << " = [" << values(c.estimate_si, c.print_scale) << "]";
+    if (c.sigma_si.allFinite()) out << " +- [" << values(c.sigma_si, c.print_scale) << "]";
+    out << " " << c.unit << (c.applied ? ", applied" : ", not applied") << ": " << c.note << "\n";
+  }
 }
 
 // The error falling step by step: what each step added, its estimate, and how the model then fits.
@@ -148,6 +166,7 @@ void print_report(std::ostream& out, const Diagnosis& d) {
         << (d.imu_noise_applied ? ": the diagnosis runs with it (vibration, or a datasheet value)"
                                 : ": within 2x, the configured noise kept")
         << "\n";
+  print_self_calibration(out, d);
   out << "\n1. Model check\n";
   if (d.gate_opened)
     out << "  (the model rejected more than 20 % of the measurements and diverged: diagnosed with the gate opened)\n";

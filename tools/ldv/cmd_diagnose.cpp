@@ -118,7 +118,28 @@ void run_diagnose(const DiagnoseArgs& a) {
   opt.verbose = !a.quiet;
   if (!a.truth.empty()) in.truth = read_nav(a.truth);
 
-  const diag::Diagnosis d = diag::diagnose(in, opt);
+  diag::Diagnosis d = diag::diagnose(in, opt);
+  // The IMU latency the input loading looked for (and took out of the stamps when significant) is a finding of
+  // the diagnosis too: a user must learn that the stamps were late, not only get a model that fits.
+  if (loaded.imu_latency.valid) {
+    diag::SelfCalibration c;
+    c.name = "time_offset";
+    // The filter pass's refinement where there was one (nav_inputs.cpp refine_latency_with_filter).
+    const bool refined = loaded.imu_latency_refined.done;
+    const double lag_s = refined ? loaded.imu_latency_refined.lag_s : loaded.imu_latency.lag_s;
+    const double sigma_s = refined ? loaded.imu_latency_refined.sigma_s : loaded.imu_latency.sigma_s;
+    c.estimate_si = Eigen::VectorXd::Constant(1, -lag_s);
+    c.sigma_si = Eigen::VectorXd::Constant(1, sigma_s);
+    c.unit = "ms";
+    c.print_scale = 1e3;
+    c.applied = loaded.imu_latency_applied;
+    char b[200];
+    std::snprintf(b, sizeof b, "IMU stamps late by %.1f +- %.1f ms (the turns' heading changes against the GNSS track); %s",
+                  1e3 * lag_s, 1e3 * sigma_s,
+                  c.applied ? "taken out of the stamps before the diagnosis" : "not taken out (not significant)");
+    c.note = b;
+    d.self_calibration.insert(d.self_calibration.begin(), c);
+  }
   diag::print_report(std::cout, d);
   if (!a.json.empty()) diag::write_json(d, a.json);
   if (!a.write_config.empty()) {
