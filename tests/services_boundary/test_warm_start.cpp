@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "common/geo/earth_model.hpp"
@@ -56,6 +57,23 @@ double worst_heading_after_restart(const sim::SimResult& sim, const est::Session
   }
   *how = engine.initialisation();
   return worst;
+}
+
+// The state the service saves before it goes down 2 s before restart_s (navigated from the start, fixes 0.2 s late
+// as live); nothing when it was not navigating by then.
+std::optional<WarmState> state_saved_before_restart(const sim::SimResult& sim, const est::SessionOptions& so,
+                                                    double restart_s) {
+  FusionEngine before(so);
+  std::vector<FusionOutput> out;
+  size_t g = 0;
+  for (const ImuIncrement& imu : sim.imu) {
+    if (imu.t_s > restart_s - 2.0) break;  // down for 2 s
+    for (; g < sim.gnss.size() && sim.gnss[g].t_s + 0.2 <= imu.t_s; ++g) before.on_gnss(sim.gnss[g], 2300, imu.t_s);
+    out.clear();
+    before.on_imu(imu, 2300, imu.t_s, out);
+  }
+  if (!before.navigating()) return std::nullopt;
+  return before.warm_state(0.0);
 }
 
 }  // namespace
@@ -116,17 +134,9 @@ TEST(WarmStart, GivenAMemsTurnOnBias_WhenFusionRestartsWhileMoving_ThenTheSavedG
 
   // The service before the restart: navigates up to restart_s, then saves its state.
   const double restart_s = sim.imu.front().t_s + 200.0;
-  FusionEngine before(so);
-  std::vector<FusionOutput> out;
-  size_t g = 0;
-  for (const ImuIncrement& imu : sim.imu) {
-    if (imu.t_s > restart_s - 2.0) break;  // down for 2 s
-    for (; g < sim.gnss.size() && sim.gnss[g].t_s + 0.2 <= imu.t_s; ++g) before.on_gnss(sim.gnss[g], 2300, imu.t_s);
-    out.clear();
-    before.on_imu(imu, 2300, imu.t_s, out);
-  }
-  ASSERT_TRUE(before.navigating());
-  const WarmState saved = before.warm_state(0.0);
+  const std::optional<WarmState> saved_before = state_saved_before_restart(sim, so, restart_s);
+  ASSERT_TRUE(saved_before) << "not navigating before the restart";
+  const WarmState saved = *saved_before;
   const double saved_yaw_rad = truth_at(sim, saved.state.t_s).rpy_rad.z();
   const double saved_error_deg = headings_apart_deg(saved.state.rpy_rad().z(), saved_yaw_rad);
   // The vehicle's turn while the service was down (the warm start turns the attitude by the course's change only
@@ -210,18 +220,10 @@ TEST(WarmStart, GivenAConfiguredInitialStateAndARecentSavedOne_WhenFusionRestart
   const est::SessionOptions so = live_session_options(cfg, fo);
 
   const double restart_s = sim.imu.front().t_s + 60.0;
-  FusionEngine before(so);
-  std::vector<FusionOutput> out;
-  size_t g = 0;
-  for (const ImuIncrement& imu : sim.imu) {
-    if (imu.t_s > restart_s - 2.0) break;
-    for (; g < sim.gnss.size() && sim.gnss[g].t_s + 0.2 <= imu.t_s; ++g) before.on_gnss(sim.gnss[g], 2300, imu.t_s);
-    out.clear();
-    before.on_imu(imu, 2300, imu.t_s, out);
-  }
-  ASSERT_TRUE(before.navigating());
+  const std::optional<WarmState> saved = state_saved_before_restart(sim, so, restart_s);
+  ASSERT_TRUE(saved) << "not navigating before the restart";
   std::string how;
-  const double worst_deg = worst_heading_after_restart(sim, so, before.warm_state(0.0), restart_s, 20.0, &how);
+  const double worst_deg = worst_heading_after_restart(sim, so, *saved, restart_s, 20.0, &how);
   EXPECT_NE(how.find("warm start"), std::string::npos) << how;
   EXPECT_EQ(how.find("aligned instead"), std::string::npos) << how;
   EXPECT_LT(worst_deg, 1.0);

@@ -16,25 +16,12 @@
 #include "estimator/update/odometer.hpp"
 #include "services/fusion/log_replay.hpp"
 #include "sim/simulator.hpp"
+#include "tests/services_boundary/hostile_log.hpp"
 
 using namespace ldv;
 namespace fs = std::filesystem;
 
-namespace {
-
-template <class Msg>
-void write_event(lcm::LogFile& log, const std::string& channel, const Msg& m, double arrival_s) {
-  std::vector<uint8_t> buf(static_cast<size_t>(m.getEncodedSize()));
-  ASSERT_GE(m.encode(buf.data(), 0, static_cast<int>(buf.size())), 0);
-  lcm::LogEvent e{};
-  e.timestamp = static_cast<int64_t>(std::llround(arrival_s * 1e6));
-  e.channel = channel;
-  e.datalen = static_cast<int32_t>(buf.size());
-  e.data = buf.data();
-  ASSERT_EQ(log.writeEvent(&e), 0);
-}
-
-}  // namespace
+using ldv::testing::write_log_event;
 
 TEST(WheelSpeedReplay, GivenAnOdometerOnTheBus_WhenTheLogIsReplayedWithTheOdometerAid_ThenItEqualsTheFileRun) {
   sim::SimRequest req;
@@ -60,7 +47,7 @@ TEST(WheelSpeedReplay, GivenAnOdometerOnTheBus_WhenTheLogIsReplayedWithTheOdomet
     int64_t seq = 0;
     for (const ImuIncrement& inc : sim.imu) {
       for (; g < sim.gnss.size() && sim.gnss[g].t_s <= inc.t_s + 0.5; ++g)
-        write_event(log, "GNSS_SOLUTION", message_from_gnss(sim.gnss[g], week, static_cast<int64_t>(g)), inc.t_s);
+        write_log_event(log, "GNSS_SOLUTION", message_from_gnss(sim.gnss[g], week, static_cast<int64_t>(g)), inc.t_s);
       for (; o < sim.odometer.size() && sim.odometer[o].t_s <= inc.t_s + 0.5; ++o) {
         ldv_lcm::wheel_speed_t m = message_from_odometer(sim.odometer[o].t_s, sim.odometer[o].speed_mps, week, seq);
         if (o % 50 == 49) {
@@ -68,9 +55,9 @@ TEST(WheelSpeedReplay, GivenAnOdometerOnTheBus_WhenTheLogIsReplayedWithTheOdomet
           m.status |= kWheelStatusSlipping;
           ++slipping;
         }
-        write_event(log, "WHEEL_SPEED", m, inc.t_s);
+        write_log_event(log, "WHEEL_SPEED", m, inc.t_s);
       }
-      write_event(log, "IMU", message_from_imu(inc, week, seq++), inc.t_s);
+      write_log_event(log, "IMU", message_from_imu(inc, week, seq++), inc.t_s);
     }
   }
 
