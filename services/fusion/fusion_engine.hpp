@@ -14,6 +14,7 @@
 //  - warm start: after a restart, a recent saved state (attitude, velocity) plus the first GNSS fix
 //    restart navigation at once instead of waiting for a static period (NavSession::set_warm_start).
 #include <ldv_lcm/wheel_speed_t.hpp>
+#include <memory>
 #include <vector>
 
 #include "common/formats/kfgins_config.hpp"
@@ -54,7 +55,7 @@ class FusionEngine {
 
   // Optional: resume from a saved state (used until the first GNSS fix arrives).
   void set_warm_start(const WarmState& saved) {
-    session_.set_warm_start(saved.state, saved.std, saved.gyro_bias_rad_s);
+    run_->session.set_warm_start(saved.state, saved.std, saved.gyro_bias_rad_s);
   }
   // What set_warm_start takes: the filter's state now, with the gyro bias it takes out.
   WarmState warm_state(double host_time_s) const;
@@ -75,21 +76,34 @@ class FusionEngine {
   // A wheel_speed_t the input gate accepted, as an odometer reading (ignored without the odometer aid).
   void on_wheel_speed(const ldv_lcm::wheel_speed_t& m, double arrival_s, std::vector<FusionOutput>& out);
 
+  // The input's time line went back (FusionInputGate::imu_jumps_back: a receiver corrected its week, the first
+  // message was stamped ahead): a filter cannot go back in time, so the session starts again, warm from the state
+  // it had when navigating, on a new continuous time scale.
+  void restart_on_new_time_line(double host_time_s);
+
   // A filter epoch (seconds on the engine's continuous scale, as in InnovationRecord::t_s) as week + seconds.
   GpsTime week_time(double filter_t_s) const { return time_.week_time(filter_t_s); }
 
-  bool navigating() const { return session_.navigating(); }
-  const est::NavFilter& filter() const { return filter_; }
-  est::NavFilter& filter() { return filter_; }
-  const std::string& initialisation() const { return session_.initialisation(); }
-  const est::NavSession& session() const { return session_; }
+  bool navigating() const { return run_->session.navigating(); }
+  const est::NavFilter& filter() const { return run_->filter; }
+  est::NavFilter& filter() { return run_->filter; }
+  const std::string& initialisation() const { return run_->session.initialisation(); }
+  const est::NavSession& session() const { return run_->session; }
 
  private:
+  // The filter and the session that drives it: one run on one time line (restart_on_new_time_line makes another).
+  struct Run {
+    Run(const est::SessionOptions& so, est::NavSession::EpochSink sink) : filter(so.filter), session(so, filter, std::move(sink)) {}
+    est::NavFilter filter;
+    est::NavSession session;
+  };
+  void on_epoch(const est::NavFilter& f, int reference_week);
+
+  est::SessionOptions options_;
   ContinuousGpsTime time_;
-  est::NavFilter filter_;
   std::vector<FusionOutput>* out_ = nullptr;  // where the session's epochs go during a call
   est::NavSession::EpochSink epoch_observer_;
-  est::NavSession session_;
+  std::unique_ptr<Run> run_;
 };
 
 }  // namespace ldv

@@ -56,6 +56,8 @@ class FusionInputGate {
   InputVerdict check(const ldv_lcm::gnss_solution_t& m);
   InputVerdict check(const ldv_lcm::wheel_speed_t& m);
   const FusionInputCounters& counters() const { return c_; }
+  // IMU time lines followed backwards (MessageTimeGate::jumps_back): the engine restarts on each.
+  long imu_jumps_back() const { return imu_time_.jumps_back(); }
 
  private:
   InputVerdict count(InputVerdict v);

@@ -19,6 +19,7 @@ LogReplaySummary replay_fusion_log(const std::string& log_path, FusionEngine& en
   FusionInputOptions gate_options;  // the live service's defaults
   gate_options.host_clock_imu = host_clock_imu;
   FusionInputGate gate(gate_options);
+  long jumps_back_seen = 0;
   LcmLogEvent ev;
   while (log.next(ev)) {
     const double arrival_s = ev.timestamp_us * 1e-6;  // logger receive time [us] -> s
@@ -35,6 +36,10 @@ LogReplaySummary replay_fusion_log(const std::string& log_path, FusionEngine& en
       }
       ++sum.imu_messages;
       if (v == InputVerdict::kNotGpsTime) continue;
+      if (gate.imu_jumps_back() > jumps_back_seen) {  // as the live service: the stream went back, start again
+        jumps_back_seen = gate.imu_jumps_back();
+        engine.restart_on_new_time_line(arrival_s);
+      }
       engine.on_imu(imu_from_message(m), m.gps_week, arrival_s, outs);
     } else if (ev.channel == gnss_channel) {
       ldv_lcm::gnss_solution_t m;

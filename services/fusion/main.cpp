@@ -123,6 +123,7 @@ int main(int argc, char** argv) {
     };
 
     ldv::FusionInputGate gate({cfg.host_clock_imu, cfg.imu_max_ahead_s, cfg.gnss_max_ahead_s});
+    long jumps_back_seen = 0;
     double last_refusal_s = -1e300;
     // Refused input is counted (heartbeat: malformed) and logged once per reason change, never fatal.
     ldv::InputVerdict last_logged = ldv::InputVerdict::kAccepted;
@@ -140,6 +141,14 @@ int main(int argc, char** argv) {
       ++rt.counters().received;
       rt.counters().dropped += imu_seq.observe(m.seq);
       if (refused(gate.check(m), "IMU", m.gps_week, m.gps_sow_s)) return;
+      if (gate.imu_jumps_back() > jumps_back_seen) {  // the whole IMU stream went back in time: start again
+        jumps_back_seen = gate.imu_jumps_back();
+        spdlog::warn("fusion: the IMU stream went back in time to week {} {:.3f} s and held there: navigation "
+                     "restarts on it (warm from the last state)", m.gps_week, m.gps_sow_s);
+        engine.restart_on_new_time_line(ldv::host_time_s());
+        last_innovation_t = -1e300;
+        announced = false;
+      }
       engine.on_imu(ldv::imu_from_message(m), m.gps_week, ldv::host_time_s(), outputs);
       publish(outputs);
     }, 20000);

@@ -21,9 +21,18 @@ class TspiDecimator {
   std::optional<ldv_lcm::tspi_v1_t> on_nav(const ldv_lcm::nav_state_t& nav) {
     if (!is_usable(nav)) return std::nullopt;
     // TSPI only goes forward in GPS time (one scale across weeks): a NAV older than the last one sent (fusion
-    // re-aligned, or replayed an older epoch) would make a receiver's track jump back.
+    // replayed an older epoch) would make a receiver's track jump back. Unless NAV as a whole went back (fusion
+    // restarted on an input time line that went back) and held for kFollowBack_s of its own time: then TSPI
+    // follows, instead of staying silent until the clock catches up.
     const double t_s = nav.gps_week * 604800.0 + nav.gps_sow_s;
-    if (has_last_slot_ && t_s <= last_sent_s_) return std::nullopt;
+    if (has_last_slot_ && t_s <= last_sent_s_) {
+      if (!(back_run_ && t_s > back_last_s_)) back_first_s_ = t_s;
+      back_run_ = true;
+      back_last_s_ = t_s;
+      if (t_s - back_first_s_ < kFollowBack_s) return std::nullopt;
+      has_last_slot_ = false;  // a new time line
+    }
+    back_run_ = false;
     // 0.1 ms tolerance: NAV epochs carry the IMU stamps, whose last digits jitter (far below an IMU interval).
     const long slot = static_cast<long>(std::floor((nav.gps_sow_s + 1e-4) * rate_hz_));
     if (has_last_slot_ && slot == last_slot_ && nav.gps_week == last_week_) return std::nullopt;
@@ -86,6 +95,9 @@ class TspiDecimator {
   long last_slot_ = 0;
   int last_week_ = 0;
   double last_sent_s_ = 0.0;
+  static constexpr double kFollowBack_s = 1.0;
+  bool back_run_ = false;  // NAV behind the last TSPI sent, since back_first_s_
+  double back_first_s_ = 0.0, back_last_s_ = 0.0;
   int64_t seq_ = 0;
 };
 

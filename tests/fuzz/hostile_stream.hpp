@@ -149,6 +149,7 @@ inline StreamOutcome replay_hostile_stream(const std::vector<Message>& stream) {
   fo.history_s = 3.0;
   FusionEngine engine(live_session_options(cfg, fo));
   FusionInputGate gate({});
+  long jumps_back_seen = 0;
   StreamOutcome r;
   std::vector<FusionOutput> outs;
   const auto look = [&](std::vector<FusionOutput>& o) {
@@ -178,6 +179,11 @@ inline StreamOutcome replay_hostile_stream(const std::vector<Message>& stream) {
       if (gate.check(m.imu) != InputVerdict::kAccepted) {
         ++r.refused;
         continue;
+      }
+      if (gate.imu_jumps_back() > jumps_back_seen) {  // as fusion does (services/fusion/main.cpp)
+        jumps_back_seen = gate.imu_jumps_back();
+        engine.restart_on_new_time_line(m.arrival_s);
+        r.last_nav_t_s = -1e300;  // NAV goes on from the new time line
       }
       r.last_imu_t_s = std::max(r.last_imu_t_s, (m.imu.gps_week - kFirstWeek) * kSecondsPerWeek + m.imu.gps_sow_s);
       engine.on_imu(imu_from_message(m.imu), m.imu.gps_week, m.arrival_s, outs);

@@ -82,3 +82,20 @@ TEST(FusionInputGate, GivenAGnssFixFarAheadOfTheImuClock_ThenItIsRefused) {
   g.gps_sow_s = 1100.0;
   EXPECT_EQ(gate.check(g), InputVerdict::kTooFarAhead);
 }
+
+// A stream that went back in time as a whole (a receiver corrected its week; the first sample was stamped a week
+// ahead) was refused for ever: fusion froze. It is followed once the time line behind has held for a second, and
+// counted for the engine to restart on; a single old message in between keeps being refused.
+TEST(FusionInputGate, GivenTheWholeStreamGoingBackInTime_ThenTheGateFollowsAfterASecondAndCountsIt) {
+  FusionInputGate gate({});
+  for (int k = 0; k < 10; ++k) ASSERT_EQ(gate.check(imu_at(5000.0 + 0.01 * k)), InputVerdict::kAccepted);
+  EXPECT_EQ(gate.check(imu_at(1000.0)), InputVerdict::kNotAfterLast);  // one old message
+  EXPECT_EQ(gate.check(imu_at(5000.10)), InputVerdict::kAccepted);
+  int held = 0;
+  for (int k = 0; k < 100; ++k) held += gate.check(imu_at(1000.0 + 0.01 * k)) == InputVerdict::kNotAfterLast;
+  EXPECT_EQ(held, 100);
+  EXPECT_EQ(gate.imu_jumps_back(), 0);
+  EXPECT_EQ(gate.check(imu_at(1001.00)), InputVerdict::kAccepted);
+  EXPECT_EQ(gate.imu_jumps_back(), 1);
+  EXPECT_EQ(gate.check(imu_at(1001.01)), InputVerdict::kAccepted);
+}

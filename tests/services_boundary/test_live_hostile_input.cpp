@@ -136,3 +136,20 @@ TEST(LiveHostileInput, GivenEveryFixClaimingAVarianceOf1e300m2_ThenNavStaysAsGoo
   for (const FusionOutput& o : r.outputs) resets += (o.status & est::kStatusCovarianceReset) != 0;
   EXPECT_EQ(resets, 0u);
 }
+
+// The first IMU message stamped a week ahead (week 2301 for 2300) took the stream's clock with it: every real
+// sample after it looked a week old and was refused, NAV never came. The real time line is followed after a
+// second and navigation starts on it.
+TEST(LiveHostileInput, GivenTheFirstImuMessageStampedAWeekAhead_ThenNavComesOnTheRealTimeLine) {
+  HostileDrive d = hostile_drive("hg1700-typical", 60.0, 345600.0);
+  d.on_imu = [](ldv_lcm::imu_sample_t& m, size_t i) {
+    if (i == 0) m.gps_week += 1;
+  };
+  const ReplayedNav r = replay_hostile_drive(d);
+  ASSERT_FALSE(r.outputs.empty()) << "NAV never came";
+  EXPECT_EQ(r.outputs.back().gps_week, d.first_week);
+  const double last_t = r.continuous_s(r.outputs.back(), d.first_week) - d.shift_s;
+  EXPECT_NEAR(last_t, d.sim.imu.back().t_s, 0.05) << "NAV must reach the end of the drive";
+  EXPECT_GT(r.outputs.size(), d.sim.imu.size() - 2 * 200u) << "at most the confirmation second and the restart lost";
+  EXPECT_LT(errors_against_truth(d, r).max_horizontal_m, 1.0);
+}

@@ -44,3 +44,25 @@ TEST(TspiUsable, GivenANanAnywhereInAnAidedNav_ThenNoTspiAndQualityInvalid) {
     EXPECT_FALSE(d.on_nav(bad[i])) << i;
   }
 }
+
+// Issue 35 (items 2, 3): TSPI never goes back for one old or absurd NAV, and never carries a speed or height no
+// vehicle has; but when NAV as a whole went back (fusion restarted on an input time line that went back), TSPI
+// follows once that line has held for a second instead of falling silent until the clock catches up.
+TEST(TspiUsable, GivenNavGoingBackOnceOrForGood_ThenTspiRefusesTheOneAndFollowsTheOther) {
+  TspiDecimator d(10.0);
+  int sent = 0;
+  for (int k = 0; k < 100; ++k) sent += d.on_nav(aided_nav(5000.0 + 0.01 * k)).has_value();
+  EXPECT_EQ(sent, 10);
+  EXPECT_FALSE(d.on_nav(aided_nav(4000.0)));  // one old NAV
+  ldv_lcm::nav_state_t fast = aided_nav(5001.0);
+  fast.vel_ned_mps[0] = 1e6;
+  EXPECT_FALSE(d.on_nav(fast));
+  ldv_lcm::nav_state_t high = aided_nav(5001.0);
+  high.height_m = -8.6e22;
+  EXPECT_FALSE(d.on_nav(high));
+  int during = 0, after = 0;
+  for (int k = 0; k < 100; ++k) during += d.on_nav(aided_nav(1000.0 + 0.01 * k)).has_value();
+  for (int k = 100; k < 200; ++k) after += d.on_nav(aided_nav(1000.0 + 0.01 * k)).has_value();
+  EXPECT_EQ(during, 0) << "held back for the first second";
+  EXPECT_EQ(after, 10) << "then 10 Hz on the new time line";
+}
