@@ -50,7 +50,10 @@ struct FusionInputCounters {
 
 class FusionInputGate {
  public:
-  explicit FusionInputGate(FusionInputOptions o) : o_(o), imu_time_(o.imu_max_ahead_s), jump_gate_(o.jump_gate) {}
+  // IMU samples closer than 10 us are one sample twice (no IMU samples above 100 kHz; the KF-GINS reader's rule).
+  static constexpr double kMinImuInterval_s = 1e-5;
+  explicit FusionInputGate(FusionInputOptions o)
+      : o_(o), imu_time_(o.imu_max_ahead_s, 3, 1.0, kMinImuInterval_s), jump_gate_(o.jump_gate) {}
 
   InputVerdict check(const ldv_lcm::imu_sample_t& m);
   InputVerdict check(const ldv_lcm::gnss_solution_t& m);

@@ -18,13 +18,17 @@ class MessageTimeGate {
  public:
   enum class Verdict { kAccepted, kTooFarAhead, kNotAfterLast };
 
-  explicit MessageTimeGate(double max_ahead_s, int confirmations = 3, double confirm_span_s = 1.0)
-      : max_ahead_s_(max_ahead_s), confirmations_(confirmations), confirm_span_s_(confirm_span_s) {}
+  // min_step_s: a message closer than this after the last accepted one is the same message again (an IMU
+  // sample 3 ns after another gave two NAV epochs at one printed time).
+  explicit MessageTimeGate(double max_ahead_s, int confirmations = 3, double confirm_span_s = 1.0,
+                           double min_step_s = 0.0)
+      : max_ahead_s_(max_ahead_s), confirmations_(confirmations), confirm_span_s_(confirm_span_s),
+        min_step_s_(min_step_s) {}
 
   // t_s: continuous time of the message (e.g. GPS week * 604800 + seconds of week).
   Verdict check(double t_s) {
     if (!has_last_) return accept(t_s);
-    const bool behind = !(t_s > last_s_);
+    const bool behind = !(t_s > last_s_ + min_step_s_);
     if (!behind && t_s - last_s_ <= max_ahead_s_) return accept(t_s);
     // Off the time line, ahead or behind: does it continue a run of such messages (a new time line) or start one?
     if (run_length_ > 0 && t_s > run_last_s_ && t_s - run_last_s_ <= max_ahead_s_) {
@@ -56,7 +60,7 @@ class MessageTimeGate {
 
   double max_ahead_s_;
   int confirmations_;
-  double confirm_span_s_;
+  double confirm_span_s_, min_step_s_;
   bool has_last_ = false;
   double last_s_ = 0.0, run_first_s_ = 0.0, run_last_s_ = 0.0;
   int run_length_ = 0;

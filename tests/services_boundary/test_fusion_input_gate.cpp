@@ -99,3 +99,14 @@ TEST(FusionInputGate, GivenTheWholeStreamGoingBackInTime_ThenTheGateFollowsAfter
   EXPECT_EQ(gate.imu_jumps_back(), 1);
   EXPECT_EQ(gate.check(imu_at(1001.01)), InputVerdict::kAccepted);
 }
+
+// Issue 35, item 29 on the bus: two IMU stamps 3 ns or 10 ns apart gave NAV epochs at one printed time. The second
+// is the same sample again: refused, and the stream goes on.
+TEST(FusionInputGate, GivenTwoImuStampsNanosecondsApart_ThenTheSecondIsRefused) {
+  for (const double apart_s : {3e-9, 1e-8}) {
+    FusionInputGate gate({});
+    ASSERT_EQ(gate.check(imu_at(1000.0)), InputVerdict::kAccepted);
+    EXPECT_EQ(gate.check(imu_at(1000.0 + apart_s)), InputVerdict::kNotAfterLast);
+    EXPECT_EQ(gate.check(imu_at(1000.01)), InputVerdict::kAccepted);
+  }
+}
