@@ -50,9 +50,19 @@ int decimals_of_last_field(std::string_view text) {
   return static_cast<int>(digits);
 }
 
-// The last line, unterminated, with a shorter last field than the line before: cut while being written.
-bool cut_last_line(const TextFileLines& lines, std::string_view text, int previous_decimals) {
-  return !lines.last_line_terminated() && previous_decimals > 0 && decimals_of_last_field(text) < previous_decimals;
+// The last line, unterminated, with a shorter last field than the line before, was cut while being written:
+// dropped and counted (true). Otherwise its decimals become the reference for the next line.
+bool drop_if_cut(const TextFileLines& lines, std::string_view text, int& previous_decimals, DroppedRecords& dropped,
+                 const std::string& path, long line) {
+  const int decimals = decimals_of_last_field(text);
+  if (!lines.last_line_terminated() && previous_decimals > 0 && decimals < previous_decimals) {
+    dropped.add(DropReason::kMalformed, path, line,
+                "the last line ends without a newline and its last field is shorter than the line before's: "
+                "cut while written");
+    return true;
+  }
+  previous_decimals = decimals;
+  return false;
 }
 
 // A time behind the record before: was the record before the corrupted one (one bad digit carried it ahead of
@@ -106,13 +116,7 @@ std::vector<ImuIncrement> read_kfgins_imu(const std::string& path, ImuReadReport
                       "an increment beyond any IMU (|dtheta| <= 100 rad, |dvel| <= 1e4 m/s per sample)");
       continue;
     }
-    if (cut_last_line(lines, text, previous_decimals)) {
-      rep.dropped.add(DropReason::kMalformed, path, line,
-                      "the last line ends without a newline and its last field is shorter than the line before's: "
-                      "cut while written");
-      continue;
-    }
-    previous_decimals = decimals_of_last_field(text);
+    if (drop_if_cut(lines, text, previous_decimals, rep.dropped, path, line)) continue;
     ImuRow r{{}, line};
     r.s.t_s = v[0];
     r.s.dtheta_b_rad = Vec3(v[1], v[2], v[3]);
@@ -259,13 +263,7 @@ std::vector<GnssFix> read_kfgins_gnss(const std::string& path, GnssReadReport* r
         continue;
       }
     }
-    if (cut_last_line(lines, text, previous_decimals)) {
-      rep.dropped.add(DropReason::kMalformed, path, line,
-                      "the last line ends without a newline and its last field is shorter than the line before's: "
-                      "cut while written");
-      continue;
-    }
-    previous_decimals = decimals_of_last_field(text);
+    if (drop_if_cut(lines, text, previous_decimals, rep.dropped, path, line)) continue;
     out.push_back(g);
     line_of.push_back(line);
   }

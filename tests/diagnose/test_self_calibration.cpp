@@ -28,9 +28,8 @@ TEST(SelfCalibration, GivenImuStampsLate_ThenDiagnoseReportsTheLatencyItTookOutW
   sim::write_outputs(sim, dir.string());
   // When
   const fs::path json = dir / "diagnosis.json";
-  const test::CliResult r = test::run_ldv({"diagnose", "--kfgins-config", (dir / "kfgins.yaml").string(), "--json",
-                                           json.string(), "--quiet"},
-                                          240.0);
+  const test::CliResult r = test::run_ldv(
+      {"diagnose", "--kfgins-config", (dir / "kfgins.yaml").string(), "--json", json.string(), "--quiet"}, 240.0);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   // Then: the text names it, the JSON carries it as time_offset = -latency (GPS time = IMU time + time_offset)
   EXPECT_NE(r.output.find("Self-calibration"), std::string::npos) << r.output;

@@ -63,11 +63,11 @@ TEST(UnknownLeverArm, GivenAnAntennaOneAndAHalfMetresAwayThatTheConfigDoesNotSta
   // When: ldv nav --model ins15 --add lever_arm, with the default prior; and told the lever arm, for reference
   const LeverRun learnt = run_with_lever_arm_estimated(sim, false);
   const LeverRun told = run_with_lever_arm_estimated(sim, true);
-  std::printf("lever arm learnt (%.3f %.3f %.3f) +- (%.3f %.3f %.3f) m for (%.2f %.2f %.2f); horizontal RMS %.4f m "
-              "(told: %.4f m)\n",
-              learnt.lever_m.x(), learnt.lever_m.y(), learnt.lever_m.z(), learnt.lever_sigma_m.x(),
-              learnt.lever_sigma_m.y(), learnt.lever_sigma_m.z(), truth.x(), truth.y(), truth.z(),
-              learnt.horizontal_rms_m, told.horizontal_rms_m);
+  std::printf(
+      "lever arm learnt (%.3f %.3f %.3f) +- (%.3f %.3f %.3f) m for (%.2f %.2f %.2f); horizontal RMS %.4f m "
+      "(told: %.4f m)\n",
+      learnt.lever_m.x(), learnt.lever_m.y(), learnt.lever_m.z(), learnt.lever_sigma_m.x(), learnt.lever_sigma_m.y(),
+      learnt.lever_sigma_m.z(), truth.x(), truth.y(), truth.z(), learnt.horizontal_rms_m, told.horizontal_rms_m);
   // Then: each component within 3 of its sigmas of the truth, and the solution as good as told (RTK noise level)
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(learnt.lever_m[i], truth[i], 3.0 * learnt.lever_sigma_m[i]) << "axis " << i;
   EXPECT_LT(learnt.horizontal_rms_m, 0.03);

@@ -21,6 +21,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     fuzz::require(s.dtheta_b_rad.allFinite() && s.dvel_b_mps.allFinite(), "a device sample not finite");
   });
   const size_t chunk = 1 + data[1] % 97;
-  for (size_t at = 2; at < size; at += chunk) decoder->feed(std::span<const uint8_t>(data + at, std::min(chunk, size - at)));
+  for (size_t at = 2; at < size; at += chunk)
+    decoder->feed(std::span<const uint8_t>(data + at, std::min(chunk, size - at)));
   return 0;
 }

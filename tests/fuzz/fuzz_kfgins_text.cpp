@@ -37,7 +37,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         break;
       case 3: {
         const auto odo = read_odometer_text(path);
-        for (size_t i = 1; i < odo.size(); ++i) fuzz::require(odo[i].t_s > odo[i - 1].t_s, "odo.txt: times not increasing");
+        for (size_t i = 1; i < odo.size(); ++i)
+          fuzz::require(odo[i].t_s > odo[i - 1].t_s, "odo.txt: times not increasing");
         break;
       }
     }

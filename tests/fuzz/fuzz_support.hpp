@@ -1,14 +1,13 @@
 #pragma once
 // What every fuzz target here shares: the input as a file (the readers take paths), and the one way a target
 // reports a finding beyond the sanitizers' own (a property the output must have, broken): abort with the reason.
+#include <spdlog/spdlog.h>
 #include <unistd.h>
 
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
-
-#include <spdlog/spdlog.h>
 
 namespace ldv::fuzz {
 

@@ -8,8 +8,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <string>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "common/bus/message_conversions.hpp"
@@ -28,8 +28,8 @@ constexpr double kLat_deg = 30.5, kLon_deg = 114.3, kHeight_m = 20.0;
 
 inline double extreme_value(uint8_t v) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
-  const double table[] = {0.0,     -0.0,    1e30,  -1e30, std::nan(""), kInf,     -kInf,  1e-300,
-                          1e300,   604800., 604799.999, -1.0, 1e6,        3.0,      -3.0,   1e-9};
+  const double table[] = {0.0,   -0.0,    1e30,       -1e30, std::nan(""), kInf, -kInf, 1e-300,
+                          1e300, 604800., 604799.999, -1.0,  1e6,          3.0,  -3.0,  1e-9};
   return table[v % 16];
 }
 
@@ -96,23 +96,76 @@ inline std::vector<Message> hostile_stream(const uint8_t* script, size_t size) {
     ldv_lcm::imu_sample_t& u = m.imu;
     ldv_lcm::gnss_solution_t& g = m.gnss;
     switch (sel % 24) {
-      case 0: if (m.is_imu) u.dt_s = x; else g.age_s = static_cast<float>(x); break;
-      case 1: (m.is_imu ? u.gps_sow_s : g.gps_sow_s) += m.is_imu ? x * 1e-3 : x; break;
-      case 2: (m.is_imu ? u.gps_sow_s : g.gps_sow_s) = x; break;
-      case 3: (m.is_imu ? u.gps_week : g.gps_week) += (val % 3) - 1; break;
-      case 4: (m.is_imu ? u.gps_week : g.gps_week) = val % 2 ? 0 : 99999; break;
-      case 5: if (m.is_imu) u.dtheta_b_rad[val % 3] = x; else g.lat_deg = x; break;
-      case 6: if (m.is_imu) u.dvel_b_mps[val % 3] = x; else g.lon_deg = x; break;
-      case 7: if (m.is_imu) u.status = val % 8; else g.height_m = x; break;
-      case 8: if (!m.is_imu) g.pos_cov_ned_m2[val % 9] = x; break;
-      case 9: if (!m.is_imu) { g.has_velocity = true; g.vel_ned_mps[val % 3] = x; g.vel_var_ned_m2s2[0] = g.vel_var_ned_m2s2[1] = g.vel_var_ned_m2s2[2] = 1e-4; } break;
-      case 10: if (!m.is_imu) { g.has_velocity = true; g.vel_var_ned_m2s2[val % 3] = x; } break;
-      case 11: if (!m.is_imu) g.fix_quality = static_cast<int8_t>(val); break;
-      case 12: out.push_back(m); break;  // a duplicate
-      case 13: if (k + 1 < clean_from) std::swap(s[k], s[k + 1]), m = s[k]; break;  // out of order
-      case 14: continue;                                                            // lost
-      case 15: if (!m.is_imu) { g.lat_deg += 1e-4 * (val - 128.0); } break;           // a plausible jump
-      default: break;  // most messages pass untouched
+      case 0:
+        if (m.is_imu)
+          u.dt_s = x;
+        else
+          g.age_s = static_cast<float>(x);
+        break;
+      case 1:
+        (m.is_imu ? u.gps_sow_s : g.gps_sow_s) += m.is_imu ? x * 1e-3 : x;
+        break;
+      case 2:
+        (m.is_imu ? u.gps_sow_s : g.gps_sow_s) = x;
+        break;
+      case 3:
+        (m.is_imu ? u.gps_week : g.gps_week) += (val % 3) - 1;
+        break;
+      case 4:
+        (m.is_imu ? u.gps_week : g.gps_week) = val % 2 ? 0 : 99999;
+        break;
+      case 5:
+        if (m.is_imu)
+          u.dtheta_b_rad[val % 3] = x;
+        else
+          g.lat_deg = x;
+        break;
+      case 6:
+        if (m.is_imu)
+          u.dvel_b_mps[val % 3] = x;
+        else
+          g.lon_deg = x;
+        break;
+      case 7:
+        if (m.is_imu)
+          u.status = val % 8;
+        else
+          g.height_m = x;
+        break;
+      case 8:
+        if (!m.is_imu) g.pos_cov_ned_m2[val % 9] = x;
+        break;
+      case 9:
+        if (!m.is_imu) {
+          g.has_velocity = true;
+          g.vel_ned_mps[val % 3] = x;
+          g.vel_var_ned_m2s2[0] = g.vel_var_ned_m2s2[1] = g.vel_var_ned_m2s2[2] = 1e-4;
+        }
+        break;
+      case 10:
+        if (!m.is_imu) {
+          g.has_velocity = true;
+          g.vel_var_ned_m2s2[val % 3] = x;
+        }
+        break;
+      case 11:
+        if (!m.is_imu) g.fix_quality = static_cast<int8_t>(val);
+        break;
+      case 12:
+        out.push_back(m);
+        break;  // a duplicate
+      case 13:
+        if (k + 1 < clean_from) std::swap(s[k], s[k + 1]), m = s[k];
+        break;  // out of order
+      case 14:
+        continue;  // lost
+      case 15:
+        if (!m.is_imu) {
+          g.lat_deg += 1e-4 * (val - 128.0);
+        }
+        break;  // a plausible jump
+      default:
+        break;  // most messages pass untouched
     }
     out.push_back(m);
   }

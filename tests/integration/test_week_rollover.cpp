@@ -8,13 +8,12 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <ldv_lcm/service_status_t.hpp>
+#include <ldv_lcm/tspi_v1_t.hpp>
 #include <map>
 #include <memory>
 #include <optional>
 #include <set>
-
-#include <ldv_lcm/service_status_t.hpp>
-#include <ldv_lcm/tspi_v1_t.hpp>
 
 #include "common/bus/bus.hpp"
 #include "common/bus/message_conversions.hpp"
@@ -84,17 +83,21 @@ TEST(WeekRollover, GivenHostileMessagesAndABadWarmState_ThenTspiKeepsComingIntoT
   Bus vehicle(kVehicleUrl);
   std::set<std::string> up;
   std::optional<ldv_lcm::service_status_t> fusion_status;
-  vehicle.subscribe<ldv_lcm::service_status_t>("STATUS_.*", [&](const ldv_lcm::service_status_t& m, const std::string& ch) {
-    up.insert(ch);
-    if (ch == "STATUS_FUSION") fusion_status = m;
-  });
+  vehicle.subscribe<ldv_lcm::service_status_t>("STATUS_.*",
+                                               [&](const ldv_lcm::service_status_t& m, const std::string& ch) {
+                                                 up.insert(ch);
+                                                 if (ch == "STATUS_FUSION") fusion_status = m;
+                                               });
   const std::string fusion_log = (dir / "fusion.log").string();
   test::ChildProcess fusion(kBin + "/fusion", {"--config", fusion_cfg.string()}, "", fusion_log);
   test::ChildProcess tspi(kBin + "/tspi_pub", {"--config", tspi_cfg.string()});
   Bus remote("udpm://239.255.77.1:7668?ttl=1");
   std::vector<ldv_lcm::tspi_v1_t> got;
-  remote.subscribe<ldv_lcm::tspi_v1_t>("TSPI", [&](const ldv_lcm::tspi_v1_t& t, const std::string&) { got.push_back(t); });
-  ASSERT_TRUE(test::spin_until(vehicle, [&] { return up.size() >= 2; }, 30.0)) << "no heartbeats from fusion and tspi_pub";
+  remote.subscribe<ldv_lcm::tspi_v1_t>("TSPI",
+                                       [&](const ldv_lcm::tspi_v1_t& t, const std::string&) { got.push_back(t); });
+  ASSERT_TRUE(test::spin_until(
+      vehicle, [&] { return up.size() >= 2; }, 30.0))
+      << "no heartbeats from fusion and tspi_pub";
 
   // When the drive plays at 3x real time while the test publishes a hostile message every 0.5 s of data time,
   // stamped just ahead of the newest TSPI: absurd IMU increments, a GNSS velocity of 1e6 m/s at the right place,
@@ -151,8 +154,10 @@ TEST(WeekRollover, GivenHostileMessagesAndABadWarmState_ThenTspiKeepsComingIntoT
     }
   }
   const double last_epoch_s = imu.back().t_s - 0.06;
-  test::spin_until(remote, [&] { return !got.empty() && continuous_s(got.back()) >= last_epoch_s; }, 60.0);
-  test::spin_until(vehicle, [&] { return fusion_status && fusion_status->malformed > 0; }, 5.0);
+  test::spin_until(
+      remote, [&] { return !got.empty() && continuous_s(got.back()) >= last_epoch_s; }, 60.0);
+  test::spin_until(
+      vehicle, [&] { return fusion_status && fusion_status->malformed > 0; }, 5.0);
   for (auto* p : {&tspi, &fusion}) p->signal(SIGTERM);
   EXPECT_EQ(fusion.wait_exit(5), 0);
   EXPECT_EQ(tspi.wait_exit(5), 0);
@@ -182,17 +187,17 @@ TEST(WeekRollover, GivenHostileMessagesAndABadWarmState_ThenTspiKeepsComingIntoT
                                               got[i].vel_ned_mps[1] * got[i].vel_ned_mps[1]));
     const auto it = truth.find(std::lround(t * 1000));
     if (it == truth.end() || t < continuous_s(got.front()) + 10.0) continue;
-    const Vec3 d = earth::ned_between(it->second.pos, {got[i].lat_deg * kDegToRad, got[i].lon_deg * kDegToRad,
-                                                       got[i].height_m});
+    const Vec3 d =
+        earth::ned_between(it->second.pos, {got[i].lat_deg * kDegToRad, got[i].lon_deg * kDegToRad, got[i].height_m});
     sum_h2 += d.head<2>().squaredNorm();
     ++compared;
   }
   ASSERT_GT(compared, 1000);
   const double rms_m = std::sqrt(sum_h2 / compared);
-  std::printf("TSPI across the rollover: %zu messages, %ld in week %d, %ld hostile messages published (fusion "
-              "refused %lld), max speed %.1f m/s, horizontal RMS vs truth %.3f m\n",
-              got.size(), in_new_week, kWeek + 1, hostile, static_cast<long long>(fusion_status->malformed), max_speed,
-              rms_m);
+  std::printf(
+      "TSPI across the rollover: %zu messages, %ld in week %d, %ld hostile messages published (fusion "
+      "refused %lld), max speed %.1f m/s, horizontal RMS vs truth %.3f m\n",
+      got.size(), in_new_week, kWeek + 1, hostile, static_cast<long long>(fusion_status->malformed), max_speed, rms_m);
   EXPECT_GT(in_new_week, 20 * 40);
   EXPECT_LT(max_speed, 60.0);
   EXPECT_LT(rms_m, 0.10);

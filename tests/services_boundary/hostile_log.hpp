@@ -75,8 +75,8 @@ inline GpsTime week_time(int first_week, double continuous_s) {
 inline ReplayedNav replay_hostile_drive(const HostileDrive& d) {
   namespace fs = std::filesystem;
   static int serial = 0;
-  const fs::path log_path =
-      fs::temp_directory_path() / ("ldv_hostile_" + std::to_string(::getpid()) + "_" + std::to_string(serial++) + ".lcmlog");
+  const fs::path log_path = fs::temp_directory_path() /
+                            ("ldv_hostile_" + std::to_string(::getpid()) + "_" + std::to_string(serial++) + ".lcmlog");
   {
     lcm::LogFile log(log_path.string(), "w");
     EXPECT_TRUE(log.good());

@@ -58,8 +58,10 @@ TEST(LiveHostileInput, GivenOneImuIncrementBeyondAnyImu_ThenItIsRefusedAndNavSta
     HostileDrive d = hostile_drive("hg1700-typical", 60.0, 345600.0);
     d.on_imu = [axis = axis, value = value](ldv_lcm::imu_sample_t& m, size_t i) {
       if (i != 6000) return;
-      if (axis == 3) m.dvel_b_mps[0] = value;  // dvel_x = 1e30 m/s
-      else m.dtheta_b_rad[axis] = value;      // dtheta_x = 1000 rad in 5 ms
+      if (axis == 3)
+        m.dvel_b_mps[0] = value;  // dvel_x = 1e30 m/s
+      else
+        m.dtheta_b_rad[axis] = value;  // dtheta_x = 1000 rad in 5 ms
     };
     const ReplayedNav r = replay_hostile_drive(d);
     EXPECT_EQ(r.summary.malformed, 1);

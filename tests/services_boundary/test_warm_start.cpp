@@ -76,16 +76,22 @@ std::optional<WarmState> state_saved_before_restart(const sim::SimResult& sim, c
   return before.warm_state(0.0);
 }
 
-}  // namespace
-
-TEST(WarmState, RoundTripsItsGyroBiasAndReadsAFileSavedBeforeItWasKept) {
+// A vehicle moving at 5 m/s, nearly level, heading 86 deg: the state a fusion saves, at host time saved_host_time_s.
+WarmState moving_state_saved_at(double saved_host_time_s) {
   WarmState w;
-  w.saved_host_time_s = 1000.0;
+  w.saved_host_time_s = saved_host_time_s;
   w.state.t_s = 345700.0;
   w.state.pos = {0.5, -2.0, 100.0};
   w.state.v_n_mps = Vec3(3.0, -4.0, 0.1);
   w.state.q_b_n = quat_from_euler(Vec3(0.01, -0.02, 1.5));
   w.std.att_rad = Vec3(0.001, 0.001, 0.01);
+  return w;
+}
+
+}  // namespace
+
+TEST(WarmState, RoundTripsItsGyroBiasAndReadsAFileSavedBeforeItWasKept) {
+  WarmState w = moving_state_saved_at(1000.0);
   w.gyro_bias_rad_s = Vec3(0.004, -0.006, 0.009);
   const fs::path path = temp_file("state.yaml");
   save_warm_state(path.string(), w);
@@ -163,13 +169,7 @@ TEST(WarmStart, GivenAMemsTurnOnBias_WhenFusionRestartsWhileMoving_ThenTheSavedG
 // A warm-state file is the service's own, but a disk or a hand can spoil it (issue 35, item 6): every field is
 // checked, and a bad file is refused with the reason (fusion then aligns), never taken in to stop navigation.
 TEST(WarmState, GivenAFieldThatCannotBeAState_ThenTheFileIsRefusedWithTheReason) {
-  WarmState w;
-  w.saved_host_time_s = 1000.0;
-  w.state.t_s = 345700.0;
-  w.state.pos = {0.5, -2.0, 100.0};
-  w.state.v_n_mps = Vec3(3.0, -4.0, 0.1);
-  w.state.q_b_n = quat_from_euler(Vec3(0.01, -0.02, 1.5));
-  w.std.att_rad = Vec3(0.001, 0.001, 0.01);
+  const WarmState w = moving_state_saved_at(1000.0);
   const fs::path path = temp_file("bad_state.yaml");
   save_warm_state(path.string(), w);
   std::string good;
