@@ -1,6 +1,12 @@
 #!/usr/bin/env bash
 # Configures and builds ldvnav into build/ (binaries in build/bin/).
+# scripts/build.sh [configure|build]: one phase only (scripts/test.sh times them apart); both by default.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build build -j"$(nproc)"
+phase=${1:-all}
+if [[ $phase == all || $phase == configure ]]; then
+  cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+fi
+if [[ $phase == all || $phase == build ]]; then
+  cmake --build build -j"$(nproc)"
+fi
