@@ -8,10 +8,10 @@
 
 namespace ldv::sim {
 namespace {
-constexpr double kG = 9.80665;
-constexpr double kDegPerH = kDegToRad / 3600.0;
-constexpr double kMg = 1e-3 * kG;
-constexpr double kArcsec = kDegToRad / 3600.0;
+constexpr double kGravity_mps2 = 9.80665;
+constexpr double kDegPerHour_rad_s = kDegToRad / 3600.0;
+constexpr double kMilliG_mps2 = 1e-3 * kGravity_mps2;
+constexpr double kArcsec_rad = kDegToRad / 3600.0;
 constexpr double kMgal = 1e-5;
 
 std::vector<double> rep(double v, int n) { return std::vector<double>(n, v); }
@@ -19,8 +19,18 @@ std::vector<double> rep(double v, int n) { return std::vector<double>(n, v); }
 
 const std::vector<EffectInfo>& effect_table() {
   static const std::vector<EffectInfo> table = {
-      {"gyro_bias", {3}, {"deg/h", "deg/h", "deg/h"}, rep(kDegPerH, 3), {5.0, -3.0, 8.0}, "constant gyro bias x y z"},
-      {"accel_bias", {3}, {"mg", "mg", "mg"}, rep(kMg, 3), {2.0, -1.5, 3.0}, "constant accelerometer bias x y z"},
+      {"gyro_bias",
+       {3},
+       {"deg/h", "deg/h", "deg/h"},
+       rep(kDegPerHour_rad_s, 3),
+       {5.0, -3.0, 8.0},
+       "constant gyro bias x y z"},
+      {"accel_bias",
+       {3},
+       {"mg", "mg", "mg"},
+       rep(kMilliG_mps2, 3),
+       {2.0, -1.5, 3.0},
+       "constant accelerometer bias x y z"},
       {"gyro_scale", {3}, {"ppm", "ppm", "ppm"}, rep(1e-6, 3), {300.0, -200.0, 500.0}, "gyro scale-factor error"},
       {"accel_scale",
        {3},
@@ -31,19 +41,19 @@ const std::vector<EffectInfo>& effect_table() {
       {"gyro_misalignment",
        {3},
        {"arcsec", "arcsec", "arcsec"},
-       rep(kArcsec, 3),
+       rep(kArcsec_rad, 3),
        {100.0, -60.0, 80.0},
        "gyro non-orthogonality m_x m_y m_z (symmetric N(m))"},
       {"accel_misalignment",
        {3},
        {"arcsec", "arcsec", "arcsec"},
-       rep(kArcsec, 3),
+       rep(kArcsec_rad, 3),
        {100.0, -60.0, 80.0},
        "accelerometer non-orthogonality m_x m_y m_z (symmetric N(m))"},
       {"g_sensitivity",
        {3},
        {"deg/h/g", "deg/h/g", "deg/h/g"},
-       rep(kDegPerH / kG, 3),
+       rep(kDegPerHour_rad_s / kGravity_mps2, 3),
        {2.0, -1.0, 1.5},
        "gyro bias per specific force on the same axis"},
       {"gyro_nonlinear_scale",
@@ -55,7 +65,7 @@ const std::vector<EffectInfo>& effect_table() {
       {"accel_nonlinear_scale",
        {3},
        {"ug/g^2", "ug/g^2", "ug/g^2"},
-       rep(1e-6 / kG, 3),
+       rep(1e-6 / kGravity_mps2, 3),
        {50.0, -30.0, 40.0},
        "quadratic accelerometer scale: f_meas += k f^2"},
       {"lever_arm", {3}, {"m", "m", "m"}, rep(1.0, 3), {0.5, -0.3, -1.2}, "antenna minus IMU, body front-right-down"},
@@ -70,13 +80,13 @@ const std::vector<EffectInfo>& effect_table() {
       {"gyro_moving_bias",
        {5},
        {"deg/h", "deg/h", "s", "deg/h/sqrt(h)", "deg/h/h"},
-       {kDegPerH, kDegPerH, 1.0, kDegPerH / 60.0, kDegPerH / 3600.0},
+       {kDegPerHour_rad_s, kDegPerHour_rad_s, 1.0, kDegPerHour_rad_s / 60.0, kDegPerHour_rad_s / 3600.0},
        {0.5, 0.3, 600.0, 0.1, 0.05},
        "per axis: constant, Gauss-Markov sigma B, its time constant, rate random walk K, ramp R"},
       {"accel_moving_bias",
        {5},
        {"mg", "mg", "s", "m/s/h/sqrt(h)", "m/s/h^2"},
-       {kMg, kMg, 1.0, 1.0 / 3600.0 / 60.0, 1.0 / 3600.0 / 3600.0},
+       {kMilliG_mps2, kMilliG_mps2, 1.0, 1.0 / 3600.0 / 60.0, 1.0 / 3600.0 / 3600.0},
        {0.2, 0.05, 600.0, 0.02, 0.02},
        "per axis: constant, Gauss-Markov sigma B, its time constant, rate random walk K, ramp R"},
       {"odometer_scale", {1}, {"%"}, {0.01}, {0.5}, "odometer scale-factor error: speed x (1 + s)"},

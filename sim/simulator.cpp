@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "common/io/input_error.hpp"
+#include "common/io/number_text.hpp"
 #include "common/time/gps_time.hpp"
 #include "sim/effects.hpp"
 #include "sim/gnss_model.hpp"
@@ -19,35 +20,29 @@
 namespace ldv::sim {
 namespace {
 
-std::string num(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
 void validate(const SimRequest& r) {
   auto fail = [](const std::string& opt, const std::string& msg) { throw InputError(opt, 0, msg); };
   if (!(r.duration_s > 0) || !std::isfinite(r.duration_s))
-    fail("--duration", "expected a positive number of seconds, found " + num(r.duration_s));
+    fail("--duration", "expected a positive number of seconds, found " + six_significant(r.duration_s));
   if (!(r.imu_rate_hz >= 1.0 && r.imu_rate_hz <= 4000.0))
-    fail("--imu-rate", "expected an IMU rate in [1, 4000] Hz, found " + num(r.imu_rate_hz));
+    fail("--imu-rate", "expected an IMU rate in [1, 4000] Hz, found " + six_significant(r.imu_rate_hz));
   if (!(r.gnss_rate_hz > 0.0 && r.gnss_rate_hz <= 50.0))
-    fail("--gnss-rate", "expected a GNSS rate in (0, 50] Hz, found " + num(r.gnss_rate_hz));
+    fail("--gnss-rate", "expected a GNSS rate in (0, 50] Hz, found " + six_significant(r.gnss_rate_hz));
   if (r.gnss_rate_hz > r.imu_rate_hz) fail("--gnss-rate", "expected a GNSS rate not above the IMU rate");
   if (r.gps_week < 0) fail("--gps-week", "expected a non-negative GPS week, found " + std::to_string(r.gps_week));
   if (!(r.start_sow_s >= 0.0 && r.start_sow_s + r.duration_s < kSecondsPerWeek))
-    fail("--start-sow", "expected the run to stay within one GPS week: start " + num(r.start_sow_s) + " s + duration " +
-                            num(r.duration_s) + " s must be below 604800 s");
+    fail("--start-sow", "expected the run to stay within one GPS week: start " + six_significant(r.start_sow_s) +
+                            " s + duration " + six_significant(r.duration_s) + " s must be below 604800 s");
   for (const Outage& o : r.outages)
     if (!(o.start_s >= 0.0) || !(o.length_s > 0.0))
-      fail("--outages", "expected START:LENGTH with START >= 0 and LENGTH > 0 seconds, found " + num(o.start_s) + ":" +
-                            num(o.length_s));
+      fail("--outages", "expected START:LENGTH with START >= 0 and LENGTH > 0 seconds, found " +
+                            six_significant(o.start_s) + ":" + six_significant(o.length_s));
   if (!(r.gnss_latency_s >= 0.0 && r.gnss_latency_s < 10.0))
-    fail("--gnss-latency", "expected a latency in [0, 10) s, found " + num(r.gnss_latency_s));
+    fail("--gnss-latency", "expected a latency in [0, 10) s, found " + six_significant(r.gnss_latency_s));
   if (!(r.oscillator_hz >= 1e3 && r.oscillator_hz <= 1e9))
-    fail("--osc-hz", "expected a counter frequency in [1e3, 1e9] Hz, found " + num(r.oscillator_hz));
+    fail("--osc-hz", "expected a counter frequency in [1e3, 1e9] Hz, found " + six_significant(r.oscillator_hz));
   if (!(std::abs(r.oscillator_ppm) <= 1000.0))
-    fail("--osc-ppm", "expected a frequency error within +-1000 ppm, found " + num(r.oscillator_ppm));
+    fail("--osc-ppm", "expected a frequency error within +-1000 ppm, found " + six_significant(r.oscillator_ppm));
 }
 
 // Effects by name (SI); declared ones marked. Rejects an effect given twice.

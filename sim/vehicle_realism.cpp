@@ -4,19 +4,14 @@
 #include <sstream>
 
 #include "common/io/input_error.hpp"
+#include "common/io/number_text.hpp"
 #include "sim/random.hpp"
 
 namespace ldv::sim {
 namespace {
 
-std::string num(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
 void require(bool ok, const std::string& option, const std::string& expected, double found) {
-  if (!ok) throw InputError(option, 0, "expected " + expected + ", found " + num(found));
+  if (!ok) throw InputError(option, 0, "expected " + expected + ", found " + six_significant(found));
 }
 bool in(double v, double lo, double hi) { return std::isfinite(v) && v >= lo && v <= hi; }
 

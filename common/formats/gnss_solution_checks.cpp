@@ -1,24 +1,19 @@
 #include "common/formats/gnss_solution_checks.hpp"
 
-#include <cmath>
 #include <Eigen/Eigenvalues>
+#include <cmath>
 #include <numbers>
 
+#include "common/io/number_text.hpp"
+
 namespace ldv::gnss {
-namespace {
-std::string num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.6g", v);
-  return b;
-}
-}  // namespace
 
 std::optional<std::string> implausibility(const GpsTime& t) {
   if (t.week < kMinPlausibleGpsWeek || t.week > kMaxPlausibleGpsWeek)
     return "GPS week " + std::to_string(t.week) + " not in [" + std::to_string(kMinPlausibleGpsWeek) + ", " +
            std::to_string(kMaxPlausibleGpsWeek) + "]";
   if (!std::isfinite(t.sow_s) || t.sow_s < 0.0 || t.sow_s >= kSecondsPerWeek)
-    return "time of week " + num(t.sow_s) + " s not in [0, 604800)";
+    return "time of week " + six_significant(t.sow_s) + " s not in [0, 604800)";
   return std::nullopt;
 }
 
@@ -27,16 +22,17 @@ std::optional<std::string> implausibility(const GnssSolution& s) {
   const GnssFix& f = s.fix;
   constexpr double kPi = std::numbers::pi;
   if (!std::isfinite(f.pos.lat_rad) || std::abs(f.pos.lat_rad) > kPi / 2)
-    return "latitude " + num(f.pos.lat_rad * 180.0 / kPi) + " deg not in [-90, 90]";
+    return "latitude " + six_significant(f.pos.lat_rad * 180.0 / kPi) + " deg not in [-90, 90]";
   if (!std::isfinite(f.pos.lon_rad) || std::abs(f.pos.lon_rad) > 2 * kPi)
-    return "longitude " + num(f.pos.lon_rad * 180.0 / kPi) + " deg not in [-360, 360]";
+    return "longitude " + six_significant(f.pos.lon_rad * 180.0 / kPi) + " deg not in [-360, 360]";
   if (!std::isfinite(f.pos.h_m) || f.pos.h_m < kMinPlausibleHeight_m || f.pos.h_m > kMaxPlausibleHeight_m)
-    return "height " + num(f.pos.h_m) + " m not in [" + num(kMinPlausibleHeight_m) + ", " + num(kMaxPlausibleHeight_m) +
-           "]";
+    return "height " + six_significant(f.pos.h_m) + " m not in [" + six_significant(kMinPlausibleHeight_m) + ", " +
+           six_significant(kMaxPlausibleHeight_m) + "]";
   if (!s.pos_cov_ned_m2.allFinite() || !(s.pos_cov_ned_m2.diagonal().array() > 0.0).all() ||
       !(s.pos_cov_ned_m2.diagonal().array() <= kMaxPlausiblePositionVariance_m2).all())
-    return "position variances (" + num(s.pos_cov_ned_m2(0, 0)) + ", " + num(s.pos_cov_ned_m2(1, 1)) + ", " +
-           num(s.pos_cov_ned_m2(2, 2)) + ") m^2 not positive, finite and below " + num(kMaxPlausiblePositionVariance_m2);
+    return "position variances (" + six_significant(s.pos_cov_ned_m2(0, 0)) + ", " +
+           six_significant(s.pos_cov_ned_m2(1, 1)) + ", " + six_significant(s.pos_cov_ned_m2(2, 2)) +
+           ") m^2 not positive, finite and below " + six_significant(kMaxPlausiblePositionVariance_m2);
   // Positive-definite after scaling by the diagonal (a correlation matrix): a variance of 1e-300 beside 1 m^2
   // must not fail for rounding alone.
   {
@@ -50,11 +46,13 @@ std::optional<std::string> implausibility(const GnssSolution& s) {
     return "position std not positive and finite";
   if (f.has_velocity) {
     if (!f.vel_n_mps.allFinite() || f.vel_n_mps.norm() > kMaxPlausibleSpeed_mps)
-      return "velocity " + num(f.vel_n_mps.norm()) + " m/s not finite below " + num(kMaxPlausibleSpeed_mps);
+      return "velocity " + six_significant(f.vel_n_mps.norm()) + " m/s not finite below " +
+             six_significant(kMaxPlausibleSpeed_mps);
     if (!f.vel_std_n_mps.allFinite() || !(f.vel_std_n_mps.array() >= 0.0).all() ||
         !(f.vel_std_n_mps.array() < kMaxPlausibleSpeed_mps).all())
-      return "velocity std (" + num(f.vel_std_n_mps[0]) + ", " + num(f.vel_std_n_mps[1]) + ", " +
-             num(f.vel_std_n_mps[2]) + ") m/s not finite in [0, " + num(kMaxPlausibleSpeed_mps) + ")";
+      return "velocity std (" + six_significant(f.vel_std_n_mps[0]) + ", " + six_significant(f.vel_std_n_mps[1]) +
+             ", " + six_significant(f.vel_std_n_mps[2]) + ") m/s not finite in [0, " +
+             six_significant(kMaxPlausibleSpeed_mps) + ")";
   }
   if (!std::isfinite(f.age_s) || !std::isfinite(f.ratio) || f.num_sats < 0)
     return "age, ratio or satellite count not finite and >= 0";

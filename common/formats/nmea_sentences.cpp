@@ -5,9 +5,10 @@
 #include <numbers>
 #include <vector>
 
+#include "common/math/rotation.hpp"
+
 namespace ldv::gnss {
 namespace {
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 constexpr double kKnotToMps = 1852.0 / 3600.0;
 constexpr double kKmhToMps = 1.0 / 3.6;
 

@@ -13,7 +13,7 @@ std::string hhmmss(const CalendarTime& t) {
   return b;
 }
 // ddmm.mmmmmmm / dddmm.mmmmmmm with hemisphere.
-std::string angle(double rad, int deg_digits, char pos, char neg) {
+std::string ddmm_text(double rad, int deg_digits, char pos, char neg) {
   const double a = std::abs(rad) * kRadToDeg;
   int d = static_cast<int>(std::floor(a));
   double m = (a - d) * 60.0;
@@ -53,8 +53,8 @@ std::string gga(const CalendarTime& utc, const Geodetic& pos, const GgaFields& f
   if (f.age_s >= 0) std::snprintf(station, sizeof station, "%04d", f.station_id);
   std::snprintf(tail, sizeof tail, ",%d,%02d,%.1f,%.4f,M,0.0,M,%s,%s", f.quality, f.num_sats, f.hdop, pos.h_m, age,
                 station);
-  return sentence(std::string(talker) + "GGA," + hhmmss(utc) + "," + angle(pos.lat_rad, 2, 'N', 'S') + "," +
-                  angle(pos.lon_rad, 3, 'E', 'W') + tail);
+  return sentence(std::string(talker) + "GGA," + hhmmss(utc) + "," + ddmm_text(pos.lat_rad, 2, 'N', 'S') + "," +
+                  ddmm_text(pos.lon_rad, 3, 'E', 'W') + tail);
 }
 
 std::string gst(const CalendarTime& utc, double lat_std, double lon_std, double alt_std, std::string_view talker) {
@@ -79,8 +79,8 @@ std::string rmc(const CalendarTime& utc, const Geodetic& pos, double vn, double 
   if (course < 0) course += 360.0;
   char b[96];
   std::snprintf(b, sizeof b, ",%.3f,%.2f,%02d%02d%02d,,,%c", speed_kn, course, utc.day, utc.month, utc.year % 100, mode);
-  return sentence(std::string(talker) + "RMC," + hhmmss(utc) + ",A," + angle(pos.lat_rad, 2, 'N', 'S') + "," +
-                  angle(pos.lon_rad, 3, 'E', 'W') + b);
+  return sentence(std::string(talker) + "RMC," + hhmmss(utc) + ",A," + ddmm_text(pos.lat_rad, 2, 'N', 'S') + "," +
+                  ddmm_text(pos.lon_rad, 3, 'E', 'W') + b);
 }
 
 }  // namespace ldv::nmea

@@ -1,26 +1,24 @@
 #include "common/formats/rtklib_solution.hpp"
 
-#include "common/formats/gnss_solution_checks.hpp"
-
-#include "common/io/text_file_lines.hpp"
-
 #include <charconv>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <numbers>
 
+#include "common/formats/gnss_solution_checks.hpp"
 #include "common/geo/earth_model.hpp"
 #include "common/io/input_error.hpp"
+#include "common/io/text_file_lines.hpp"
 #include "common/io/text_table.hpp"
 #include "common/logging.hpp"
+#include "common/math/rotation.hpp"
 
 namespace ldv::gnss {
 namespace {
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 
-std::optional<double> number(std::string_view f) {
+std::optional<double> rtklib_number(std::string_view f) {
   if (!f.empty() && f[0] == '+') f.remove_prefix(1);
   double v = 0.0;
   const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
@@ -71,7 +69,7 @@ std::optional<GpsTime> parse_time(std::string_view a, std::string_view b) {
     t.sow_s += h * 3600.0 + mi * 60.0 + s;
     return t;
   }
-  const auto week = number(a), tow = number(b);
+  const auto week = rtklib_number(a), tow = rtklib_number(b);
   // A week beyond any int is refused before the cast (99999999999 overflowed it); gnss::implausibility judges
   // the rest.
   if (!week || !tow || *week < 0 || *week > 1e8 || *week != std::floor(*week) || *tow < 0 ||
@@ -90,7 +88,7 @@ GpsTime normalized(GpsTime t) {
 
 // "35 08 04.917" style (RTKLIB -g): degrees carry the sign.
 std::optional<double> dms_deg(std::string_view d, std::string_view m, std::string_view s) {
-  const auto dv = number(d), mv = number(m), sv = number(s);
+  const auto dv = rtklib_number(d), mv = rtklib_number(m), sv = rtklib_number(s);
   if (!dv || !mv || !sv) return std::nullopt;
   const double sign = d.starts_with('-') ? -1.0 : 1.0;
   return sign * (std::abs(*dv) + *mv / 60.0 + *sv / 3600.0);
@@ -116,7 +114,7 @@ void RtklibSolutionParser::parse_header(std::string_view line) {
     if (colon == std::string_view::npos) return;
     split_fields(line.substr(colon + 1), fields_);
     if (fields_.size() < 3) return;
-    const auto a = number(fields_[0]), b = number(fields_[1]), c = number(fields_[2]);
+    const auto a = rtklib_number(fields_[0]), b = rtklib_number(fields_[1]), c = rtklib_number(fields_[2]);
     if (!a || !b || !c) return;
     const Vec3 v(*a, *b, *c);
     options_.base_ecef_m = v.norm() > 1e6 ? v : earth::ecef_from_geodetic({*a * kDegToRad, *b * kDegToRad, *c});
@@ -152,19 +150,19 @@ RtklibSolutionParser::LineKind RtklibSolutionParser::parse_line(std::string_view
   double v[3 + kSolutionColumns + kVelocityColumns] = {};
   if (layout == RtklibPositionLayout::kLatLonDms) {
     const auto lat = dms_deg(fields_[2], fields_[3], fields_[4]), lon = dms_deg(fields_[5], fields_[6], fields_[7]);
-    const auto h = number(fields_[8]);
+    const auto h = rtklib_number(fields_[8]);
     if (!lat || !lon || !h) return malformed("expected a number in the position columns");
     v[0] = *lat, v[1] = *lon, v[2] = *h;
   } else {
     for (std::size_t k = 0; k < 3; ++k) {
-      const auto x = number(fields_[2 + k]);
+      const auto x = rtklib_number(fields_[2 + k]);
       if (!x) return malformed("expected a number in the position columns");
       v[k] = *x;
     }
   }
   const std::size_t n_rest = kSolutionColumns + (has_velocity ? kVelocityColumns : 0);
   for (std::size_t k = 0; k < n_rest; ++k) {
-    const auto x = number(fields_[first + k]);
+    const auto x = rtklib_number(fields_[first + k]);
     if (!x) return malformed("expected a number in the solution columns");
     v[3 + k] = *x;
   }

@@ -16,7 +16,7 @@ namespace ldv::assess {
 namespace {
 namespace fs = std::filesystem;
 
-std::string test_dir() {
+std::string input_counts_dir() {
   static const std::string dir = [] {
     const fs::path d = fs::path(::testing::TempDir()) / ("inputcounts_" + std::to_string(::getpid()));
     fs::create_directories(d);
@@ -25,7 +25,7 @@ std::string test_dir() {
   return dir;
 }
 std::string write(const std::string& name, const std::string& text) {
-  const std::string p = test_dir() + name;
+  const std::string p = input_counts_dir() + name;
   std::ofstream(p) << text;
   return p;
 }

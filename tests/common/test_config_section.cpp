@@ -9,13 +9,13 @@
 using namespace ldv::config;
 
 namespace {
-std::string write_temp(const std::string& name, const std::string& text) {
+std::string write_config_file(const std::string& name, const std::string& text) {
   const std::string path = ::testing::TempDir() + name;
   std::ofstream(path) << text;
   return path;
 }
 
-std::string error_of(const std::function<void()>& f) {
+std::string config_error_of(const std::function<void()>& f) {
   try {
     f();
   } catch (const ConfigError& e) {
@@ -27,7 +27,7 @@ std::string error_of(const std::function<void()>& f) {
 
 TEST(ConfigSection, GivenValidKeys_ThenTypedValuesAndDefaultsAreRead) {
   ConfigSection root =
-      ConfigSection::load(write_temp("ok.yaml", "rate_hz: 50\ntspi:\n  group: 239.255.77.1\n  ttl: 3\n"));
+      ConfigSection::load(write_config_file("ok.yaml", "rate_hz: 50\ntspi:\n  group: 239.255.77.1\n  ttl: 3\n"));
   EXPECT_DOUBLE_EQ(root.number("rate_hz", 1.0, Range::above(0.0).up_to(1000.0)), 50.0);
   EXPECT_DOUBLE_EQ(root.number("absent_s", 2.5), 2.5);
   ConfigSection t = root.section("tspi");
@@ -38,34 +38,35 @@ TEST(ConfigSection, GivenValidKeys_ThenTypedValuesAndDefaultsAreRead) {
 }
 
 TEST(ConfigSection, GivenZeroOrNanWhereAPositiveNumberIsNeeded_ThenTheErrorNamesFileLineKeyAndRange) {
-  const std::string path = write_temp("bad.yaml", "bus_url: x\ntsu:\n  counter_hz: 0\nsample_rate_hz: .nan\n");
+  const std::string path = write_config_file("bad.yaml", "bus_url: x\ntsu:\n  counter_hz: 0\nsample_rate_hz: .nan\n");
   ConfigSection root = ConfigSection::load(path);
   ConfigSection tsu = root.section("tsu");
-  EXPECT_EQ(error_of([&] { tsu.number("counter_hz", 1e7, Range::above(0.0)); }),
+  EXPECT_EQ(config_error_of([&] { tsu.number("counter_hz", 1e7, Range::above(0.0)); }),
             path + ":3: tsu.counter_hz: expected a number > 0, found 0");
-  EXPECT_EQ(error_of([&] { root.number("sample_rate_hz", 100.0, Range::above(0.0)); }),
+  EXPECT_EQ(config_error_of([&] { root.number("sample_rate_hz", 100.0, Range::above(0.0)); }),
             path + ":4: sample_rate_hz: expected a number > 0, found .nan");
 }
 
 TEST(ConfigSection, GivenAMisspeltKey_ThenRefuseUnknownNamesItsLineAndTheNearestValidKey) {
-  const std::string path = write_temp("typo.yaml", "tspi:\n  rate_hz: 50\n  chanel: TSPI\n");
+  const std::string path = write_config_file("typo.yaml", "tspi:\n  rate_hz: 50\n  chanel: TSPI\n");
   ConfigSection root = ConfigSection::load(path);
   ConfigSection t = root.section("tspi");
   t.number("rate_hz", 50.0);
   t.text("channel", "TSPI");
-  EXPECT_EQ(error_of([&] { root.refuse_unknown(); }), path + ":3: unknown key 'tspi.chanel' (did you mean 'channel'?)");
+  EXPECT_EQ(config_error_of([&] { root.refuse_unknown(); }),
+            path + ":3: unknown key 'tspi.chanel' (did you mean 'channel'?)");
 }
 
 TEST(ConfigSection, GivenAWrongType_ThenTheErrorSaysWhatWasExpected) {
-  const std::string path = write_temp("type.yaml", "ttl: three\nmode: fastest\nrpy: [1, 2]\n");
+  const std::string path = write_config_file("type.yaml", "ttl: three\nmode: fastest\nrpy: [1, 2]\n");
   ConfigSection root = ConfigSection::load(path);
-  EXPECT_EQ(error_of([&] { root.integer("ttl", 1, 0, 255); }),
+  EXPECT_EQ(config_error_of([&] { root.integer("ttl", 1, 0, 255); }),
             path + ":1: ttl: expected an integer in [0, 255], found 'three'");
-  EXPECT_EQ(error_of([&] {
+  EXPECT_EQ(config_error_of([&] {
               root.choice("mode", "fast", {"fast", "slow"});
             }),
             path + ":2: mode: expected one of fast, slow, found 'fastest'");
-  EXPECT_EQ(error_of([&] {
+  EXPECT_EQ(config_error_of([&] {
               root.numbers("rpy", {0, 0, 0}, 3);
             }),
             path + ":3: rpy: expected a list of 3 numbers finite");

@@ -40,7 +40,8 @@ KfGinsConfig without_initial_state(KfGinsConfig cfg) {
   return cfg;
 }
 
-sim::SimResult simulate(const std::string& grade, const std::string& scenario, double duration_s, uint64_t seed) {
+sim::SimResult simulate_alignment_drive(const std::string& grade, const std::string& scenario, double duration_s,
+                                        uint64_t seed) {
   sim::SimRequest req;
   req.grade = grade;
   req.seed = seed;
@@ -52,7 +53,7 @@ sim::SimResult simulate(const std::string& grade, const std::string& scenario, d
 
 TEST(Alignment, GyrocompassingTacticalGradeWithinItsTheoreticalAccuracy) {
   // Given a static tactical-grade IMU for 120 s
-  const auto sim = simulate("hg1700-typical", "static", 125.0, 5);
+  const auto sim = simulate_alignment_drive("hg1700-typical", "static", 125.0, 5);
   AlignmentOptions ao;
   FilterOptions fo = options_from_kfgins(sim.kfgins);
   ao.gyro_bias_std_rad_s = fo.gyro_bias.init_std.maxCoeff();
@@ -88,7 +89,7 @@ TEST(Alignment, GyrocompassingTacticalGradeWithinItsTheoreticalAccuracy) {
 
 TEST(Alignment, MemsHeadingFromGnssCourseThenFilterConverges) {
   // Given a MEMS IMU that cannot sense Earth rate, no initial state in the configuration
-  const auto sim = simulate("3dm-gx2-typical", "drive", 400.0, 6);
+  const auto sim = simulate_alignment_drive("3dm-gx2-typical", "drive", 400.0, 6);
   const KfGinsConfig cfg = without_initial_state(sim.kfgins);
   FilterOptions o = options_from_kfgins(cfg);
   NavFilter filter(o);
@@ -110,7 +111,7 @@ TEST(Alignment, MemsTurnOnBiasFromTheStaticStartKeepsAnInRunPriorConsistent) {
   // Given a MEMS IMU with a turn-on gyro bias of a few tenths of a degree per second and a
   // configuration whose gyro-bias prior is the datasheet's in-run instability (20 deg/h), as users
   // often write it, and no initial state
-  const auto sim = simulate("3dm-gx2-typical", "drive", 240.0, 3);
+  const auto sim = simulate_alignment_drive("3dm-gx2-typical", "drive", 240.0, 3);
   const KfGinsConfig cfg = without_initial_state(sim.kfgins);
   FilterOptions o = options_from_kfgins(cfg);
   o.gyro_bias.init_std = Vec3::Constant(20.0 * kDegToRad / 3600.0);

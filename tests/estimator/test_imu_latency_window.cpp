@@ -20,7 +20,7 @@
 namespace ldv::est {
 namespace {
 
-sim::SimResult drive(const std::string& grade, double latency_s, std::uint64_t seed) {
+sim::SimResult window_drive(const std::string& grade, double latency_s, std::uint64_t seed) {
   sim::SimRequest r;
   r.grade = grade;
   r.seed = seed;
@@ -81,8 +81,8 @@ LiveRun run_live(const sim::SimResult& sim, bool look_for_latency, double after_
 TEST(ImuLatencyWindow, GivenAnImu240msLate_WhenNavigatingLive_ThenTheLagIsFoundAndCostsNothingOnceTakenOut) {
   for (const char* grade : {"hg1700-typical", "3dm-gx2-typical"}) {
     const double lag_s = 0.24;
-    const sim::SimResult late = drive(grade, lag_s, 3);
-    const sim::SimResult on_time = drive(grade, 0.0, 3);  // the same drive and sensor errors, stamped on time
+    const sim::SimResult late = window_drive(grade, lag_s, 3);
+    const sim::SimResult on_time = window_drive(grade, 0.0, 3);  // the same drive and sensor errors, stamped on time
     const LiveRun live = run_live(late, true, 0.0);
     ASSERT_FALSE(live.decisions.empty()) << grade << ": no lag found";
     const ImuLatencyDecision& first = live.decisions.front();
@@ -112,7 +112,7 @@ TEST(ImuLatencyWindow, GivenAnImu240msLate_WhenNavigatingLive_ThenTheLagIsFoundA
 // The search runs on a worker thread and its answer is taken at a point fixed in data time: however late the
 // fixes arrive (up to the 2 s that point waits), the decisions are the same, so a log replays as it ran live.
 TEST(ImuLatencyWindow, GivenFixesArrivingLater_ThenTheDecisionsAreTheSame) {
-  const sim::SimResult late = drive("3dm-gx2-typical", 0.24, 3);
+  const sim::SimResult late = window_drive("3dm-gx2-typical", 0.24, 3);
   const LiveRun prompt = run_live(late, true, 0.0);
   const LiveRun delayed = run_live(late, true, 0.0, 1.5);
   ASSERT_FALSE(prompt.decisions.empty());
@@ -125,7 +125,7 @@ TEST(ImuLatencyWindow, GivenFixesArrivingLater_ThenTheDecisionsAreTheSame) {
 
 TEST(ImuLatencyWindow, GivenAnImuOnTime_WhenNavigatingLive_ThenNoLagIsTakenOut) {
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
-    const LiveRun live = run_live(drive("3dm-gx2-typical", 0.0, seed), true, 0.0);
+    const LiveRun live = run_live(window_drive("3dm-gx2-typical", 0.0, seed), true, 0.0);
     for (const ImuLatencyDecision& d : live.decisions)
       ADD_FAILURE() << "seed " << seed << ": a lag of " << 1e3 * d.lag_s << " +- " << 1e3 * d.sigma_s
                     << " ms taken out";

@@ -112,7 +112,7 @@ namespace ldv::est {
 namespace {
 
 // The largest horizontal error during the single outage of `s`, with or without ZUPT.
-double outage_drift(const sim::SimResult& s, bool zupt) {
+double zupt_outage_drift(const sim::SimResult& s, bool zupt) {
   FilterOptions o = options_from_kfgins(s.kfgins);
   o.zupt.enabled = zupt;
   return test::evaluate(s, o).outage_drift_m;
@@ -151,7 +151,7 @@ TEST(Zupt, MemsStopEarlyInAnOutageCutsTheDrift) {
     r.seed = seed;
     r.outages = {{625.0, 60.0}};
     const sim::SimResult s = sim::simulate(r);
-    const double a = outage_drift(s, true), b = outage_drift(s, false);
+    const double a = zupt_outage_drift(s, true), b = zupt_outage_drift(s, false);
     std::printf("seed %u: outage drift %.1f m with ZUPT, %.1f m without\n", seed, a, b);
     with += a;
     without += b;

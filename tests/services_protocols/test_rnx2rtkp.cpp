@@ -18,7 +18,7 @@ using namespace ldv;
 using namespace ldv::gnss;
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kRnxDeg_rad = std::numbers::pi / 180.0;
 const std::string kGnss = std::string(LDV_SHARED_DATA_DIR) + "/gnss/";
 const std::string kConfig = std::string(LDV_SOURCE_DIR) + "/deploy/rtklib/rtkrcv_instantaneous_ar.conf";
 const char* kRnx2rtkp = "/usr/bin/rnx2rtkp";
@@ -77,8 +77,8 @@ TEST(Rnx2rtkp, GivenTheSeptentrioPairAndOurConfig_WhenSolvedWithInstantaneousAr_
                                            d + "base.obs " + d + "base.nav",
                                        "septentrio_llh.pos");
   const auto sols = read_rtklib_pos(pos);
-  const Geodetic rover{35.13469901 * kDeg, 136.97757549 * kDeg, 104.8626};
-  const Geodetic base{35.134707705 * kDeg, 136.977577939 * kDeg, 104.853};
+  const Geodetic rover{35.13469901 * kRnxDeg_rad, 136.97757549 * kRnxDeg_rad, 104.8626};
+  const Geodetic base{35.134707705 * kRnxDeg_rad, 136.977577939 * kRnxDeg_rad, 104.853};
   const Accuracy a = against(sols, rover);
   print("septentrio, our config", a);
   EXPECT_EQ(a.epochs, 301u);  // 08:20:00-08:25:00 at 1 Hz
@@ -127,7 +127,7 @@ TEST(Rnx2rtkp, GivenTheSeptentrioPair_WhenOutputIsEcefWithWeekTow_ThenTheParserG
                                            d + "rover.obs " + d + "base.obs " + d + "base.nav",
                                        "septentrio_xyz.pos");
   const auto sols = read_rtklib_pos(pos);
-  const Accuracy a = against(sols, {35.13469901 * kDeg, 136.97757549 * kDeg, 104.8626});
+  const Accuracy a = against(sols, {35.13469901 * kRnxDeg_rad, 136.97757549 * kRnxDeg_rad, 104.8626});
   print("septentrio, ECEF + week/tow", a);
   EXPECT_EQ(a.epochs, 301u);
   EXPECT_EQ(sols.front().time.week, 2320);
@@ -147,7 +147,7 @@ TEST(Rnx2rtkp, GivenTheGeonetPair_WhenSolvedWithOurConfig_ThenFixedNearTheGeonet
   // Station 0759 in GEONET F5 (ITRF2014, epoch 2020-10-03, /usr/share/rtklib/geonet_F5.pos). The data
   // are from 2005: 15 years of plate motion and the 2011 Tohoku earthquake move the station by
   // decimetres, so this checks the parser and the fix, not centimetres.
-  const Geodetic f5{35.160867766 * kDeg, 139.613844940 * kDeg, 68.4545};
+  const Geodetic f5{35.160867766 * kRnxDeg_rad, 139.613844940 * kRnxDeg_rad, 68.4545};
   const Accuracy a = against(sols, f5);
   print("geonet 0759-3040, vs GEONET F5 2020", a);
   EXPECT_GE(a.epochs, 110u);  // 1 h at 30 s

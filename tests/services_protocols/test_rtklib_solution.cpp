@@ -15,10 +15,10 @@ using namespace ldv;
 using namespace ldv::gnss;
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kRtklibDeg_rad = std::numbers::pi / 180.0;
 // The septentrio rover's known position (data README) and the base.
-const Geodetic kRover{35.13469901 * kDeg, 136.97757549 * kDeg, 104.8626};
-const Geodetic kBase{35.134707705 * kDeg, 136.977577939 * kDeg, 104.853};
+const Geodetic kRover{35.13469901 * kRtklibDeg_rad, 136.97757549 * kRtklibDeg_rad, 104.8626};
+const Geodetic kBase{35.134707705 * kRtklibDeg_rad, 136.977577939 * kRtklibDeg_rad, 104.853};
 
 std::vector<GnssSolution> parse_all(const std::string& text, RtklibStreamCounters* counters = nullptr,
                                     RtklibParserOptions options = {}) {

@@ -22,7 +22,7 @@ using namespace ldv;
 using namespace ldv::gnss;
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kUbxDeg_rad = std::numbers::pi / 180.0;
 const std::string kWalk = std::string(LDV_SHARED_DATA_DIR) + "/drives/walk_0827/";
 
 void put(std::vector<std::uint8_t>& p, std::size_t at, std::uint64_t v, int bytes) {
@@ -69,8 +69,8 @@ TEST(UbxNavPvt, GivenASyntheticPayload_ThenEveryFieldConvertsToSi) {
   ASSERT_TRUE(s);
   EXPECT_EQ(s->time.week, 2320);
   EXPECT_NEAR(s->time.sow_s, 116400.2496, 1e-9);  // UTC 08:19:42.2496 + 18 s
-  EXPECT_NEAR(s->fix.pos.lat_rad, 35.1346990 * kDeg, 1e-12);
-  EXPECT_NEAR(s->fix.pos.lon_rad, 136.9775755 * kDeg, 1e-12);
+  EXPECT_NEAR(s->fix.pos.lat_rad, 35.1346990 * kUbxDeg_rad, 1e-12);
+  EXPECT_NEAR(s->fix.pos.lon_rad, 136.9775755 * kUbxDeg_rad, 1e-12);
   EXPECT_NEAR(s->fix.pos.h_m, 104.862, 1e-9);
   EXPECT_EQ(s->fix.quality, GnssQuality::kFixed);
   EXPECT_EQ(s->fix.num_sats, 31);

@@ -18,17 +18,19 @@ using namespace ldv::sim;
 using namespace ldv::sim::test;
 
 namespace {
-constexpr double kOmegaEarth = 7.2921151467e-5;  // WGS84 [rad/s]
+constexpr double kPoseOmegaEarth = 7.2921151467e-5;  // WGS84 [rad/s]
 constexpr double kRate = 100.0;                  // IMU rate of these tests [Hz]
 constexpr double kFirstS = 30.0, kPoseS = 10.0, kTurnS = 3.0;
 constexpr int kPoses = 18;
 
-Vec3 normal_gravity_ned(const Geodetic& p) {
+Vec3 pose_normal_gravity_ned(const Geodetic& p) {
   double gn = 0, gu = 0;
   GeographicLib::NormalGravity::WGS84().Gravity(p.lat_rad * kRadToDeg, p.h_m, gn, gu);
   return {gn, 0.0, -gu};
 }
-Vec3 earth_rate_ned(double lat) { return {kOmegaEarth * std::cos(lat), 0.0, -kOmegaEarth * std::sin(lat)}; }
+Vec3 pose_earth_rate_ned(double lat) {
+  return {kPoseOmegaEarth * std::cos(lat), 0.0, -kPoseOmegaEarth * std::sin(lat)};
+}
 
 // The specification: per pose the ZYX Euler angles [deg] (2-5 deg off the nominal table pose, on purpose) and the
 // body direction that nominally points down.
@@ -65,7 +67,10 @@ double pose_end_s(int k) { return k == 0 ? kFirstS : pose_begin_s(k) + kPoseS; }
 size_t sample(double t_s) { return static_cast<size_t>(std::llround(t_s * kRate)); }
 // The angle of the rotation from a to b (through the quaternion: exact for small angles too).
 double angle_between(const Mat3& a, const Mat3& b) { return rotvec_from_quat(Quat(Mat3(a.transpose() * b))).norm(); }
+}  // namespace
 
+// Outside the anonymous namespace: the tests derive from it (GCC warns of a test class whose base has internal
+// linkage when the file is compiled inside a unity batch).
 class MultipositionScenario : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -79,7 +84,6 @@ class MultipositionScenario : public ::testing::Test {
   static SimResult* run_;
 };
 SimResult* MultipositionScenario::run_ = nullptr;
-}  // namespace
 
 TEST_F(MultipositionScenario, TheNamesResolveAndTheDefaultSessionIsEighteenPoses) {
   const auto names = builtin_scenario_names();
@@ -107,7 +111,7 @@ TEST_F(MultipositionScenario, EveryPoseStandsStillAndSensesGravityAlongItsNamedA
   const SimResult& r = *run_;
   ASSERT_EQ(r.imu.size(), sample(252.0));
   const Geodetic p0 = r.truth.front().pos;
-  const Vec3 g_n = normal_gravity_ned(p0), w_ie_n = earth_rate_ned(p0.lat_rad);
+  const Vec3 g_n = pose_normal_gravity_ned(p0), w_ie_n = pose_earth_rate_ned(p0.lat_rad);
   for (int k = 0; k < kPoses; ++k) {
     const Mat3 C = spec_C_b_n(k);
     // The attitude is the specified one throughout the pose (truth rpy through its own rotation matrix).
@@ -145,7 +149,7 @@ TEST_F(MultipositionScenario, EveryPoseStandsStillAndSensesGravityAlongItsNamedA
 TEST_F(MultipositionScenario, TheGyroIncrementsTurnEachPoseIntoTheNextAndEveryTurnTiltsGravity) {
   const SimResult& r = *run_;
   const Geodetic p0 = r.truth.front().pos;
-  const Vec3 w_ie_n = earth_rate_ned(p0.lat_rad);
+  const Vec3 w_ie_n = pose_earth_rate_ned(p0.lat_rad);
   for (int k = 0; k + 1 < kPoses; ++k) {
     // Strapdown from the middle of pose k to the middle of pose k+1 on the sensed increments (two-sample coning
     // correction); the navigation frame turns with the Earth meanwhile: C(T) = Exp(-w_ie T) C(0) R_b.
@@ -182,7 +186,7 @@ TEST_F(MultipositionScenario, EarthRateAveragesOutOfTheMeanStaticGyroReading) {
     for (size_t i = sample(pose_begin_s(k)); i < sample(pose_end_s(k)); ++i) sum += r.imu[i].dtheta_b_rad;
     mean += sum / (pose_end_s(k) - pose_begin_s(k)) / kPoses;
   }
-  EXPECT_LT(mean.norm(), 0.064 * kOmegaEarth) << mean.transpose() / kOmegaEarth;
+  EXPECT_LT(mean.norm(), 0.064 * kPoseOmegaEarth) << mean.transpose() / kPoseOmegaEarth;
 }
 
 TEST(MultipositionPoseSegment, TurnsTheHeadingTheShortWayAndRampsRollAndPitchAsGiven) {

@@ -36,7 +36,7 @@ SimRequest odometer_request(const std::string& scenario, double duration_s) {
   return q;
 }
 
-size_t truth_index(const SimResult& r, double t_sow) {
+size_t odometer_truth_index(const SimResult& r, double t_sow) {
   return static_cast<size_t>(std::llround((t_sow - r.truth.front().t_s) * r.request.imu_rate_hz));
 }
 }  // namespace
@@ -54,7 +54,7 @@ TEST(SimOdometer, SpeedIsTheVehicleForwardSpeedOfTheOdometerPoint) {
     ASSERT_EQ(r.odometer.size(), 400u * 50u + 1u);
     double worst = 0, most_negative = 0, fastest = 0;
     for (const OdometerSample& s : r.odometer) {
-      const size_t k = truth_index(r, s.t_s);
+      const size_t k = odometer_truth_index(r, s.t_s);
       ASSERT_NEAR(r.truth[k].t_s, s.t_s, 1e-9);  // 50 Hz on the 100 Hz grid: true GPS time
       worst = std::max(worst, std::abs(s.speed_mps - forward_speed(r.truth[k], q.vehicle.odo_lever_arm_b_m, C_b_v)));
       most_negative = std::min(most_negative, s.speed_mps);

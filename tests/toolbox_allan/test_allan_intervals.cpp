@@ -20,7 +20,7 @@ using namespace ldv::allan::test;
 
 namespace {
 
-ChannelResult analyse(std::vector<double> y, double dt) {
+ChannelResult analyse_intervals(std::vector<double> y, double dt) {
   AnalysisOptions opt;
   return analyze({phase_from_rates(std::move(y), dt, "gyro_x", "rad/s")}, opt).front();
 }
@@ -46,7 +46,7 @@ TEST(AllanIntervals, GivenAQuantisationOverTheWhiteNoise_ThenNsIntervalCarriesQs
   for (int seed = 1; seed <= seeds; ++seed) {
     std::vector<double> y = simulate_rate(t, dt, samples, seed);
     add_quantisation(y, dt, q, 1000 + seed);
-    const ChannelResult r = analyse(std::move(y), dt);
+    const ChannelResult r = analyse_intervals(std::move(y), dt);
     ASSERT_TRUE(r.fit);
     ASSERT_EQ(r.fit->method, "whittle") << r.likelihood_error;
     const TermEstimate& n = (*r.fit)[ModelTerm::kN];
@@ -78,7 +78,7 @@ TEST(AllanIntervals, GivenAGaussMarkovBiasBelowTheRateRandomWalk_ThenNsAndKsInte
   const int seeds = 8;
   int spanned = 0, held = 0, n_held = 0;
   for (int seed = 1; seed <= seeds; ++seed) {
-    const ChannelResult r = analyse(simulate_rate(t, 0.02, 360000, 77 + seed), 0.02);  // 2 h at 50 Hz
+    const ChannelResult r = analyse_intervals(simulate_rate(t, 0.02, 360000, 77 + seed), 0.02);  // 2 h at 50 Hz
     ASSERT_TRUE(r.fit && r.bias_model);
     const TermEstimate& k = (*r.fit)[ModelTerm::kK];
     const BiasModelChoice& c = *r.bias_model;

@@ -34,7 +34,7 @@ void add_flicker(std::vector<double>& y, double dt, double b, double t_min, doub
   }
 }
 
-ChannelResult analyse(std::vector<double> y, double dt, const FitOptions& fo = {}) {
+ChannelResult analyse_bias_model(std::vector<double> y, double dt, const FitOptions& fo = {}) {
   AnalysisOptions opt;
   opt.fit_options = fo;
   return analyze({phase_from_rates(std::move(y), dt, "gyro_x", "rad/s")}, opt).front();
@@ -58,7 +58,7 @@ TEST(BiasModelChoice, TrueGaussMarkovIsChosenAndRecovered) {
   t.n = 0.041 * M_PI / 180.0 / 60.0;
   t.gm_t_s = 20.0;
   t.gm_sigma = 5.0 * t.n / std::sqrt(t.gm_t_s);
-  const ChannelResult r = analyse(simulate_rate(t, 0.01, 360000, 41), 0.01);
+  const ChannelResult r = analyse_bias_model(simulate_rate(t, 0.01, 360000, 41), 0.01);
   ASSERT_TRUE(r.fit && r.bias_model);
   ASSERT_EQ(r.fit->method, "whittle") << r.likelihood_error;
   const BiasModelChoice& c = *r.bias_model;
@@ -94,7 +94,7 @@ TEST(BiasModelChoice, FlickerBiasKeepsTheFlatB) {
   for (unsigned seed : {61u, 62u}) {
     std::vector<double> y = simulate_rate(t, 0.01, 360000, seed);
     add_flicker(y, 0.01, 3e-4, 0.00316, 3162.0, seed + 1000);
-    const ChannelResult r = analyse(std::move(y), 0.01);
+    const ChannelResult r = analyse_bias_model(std::move(y), 0.01);
     ASSERT_TRUE(r.fit && r.bias_model);
     ASSERT_EQ(r.fit->method, "whittle") << r.likelihood_error;
     print_choice("flicker", r);
@@ -119,7 +119,7 @@ TEST(BiasModelChoice, NoBiasPicksTheSimplerModel) {
   t.n = 1e-3;
   t.k = 1e-4;
   for (unsigned seed : {71u, 72u}) {
-    const ChannelResult r = analyse(simulate_rate(t, 0.01, 360000, seed), 0.01);
+    const ChannelResult r = analyse_bias_model(simulate_rate(t, 0.01, 360000, seed), 0.01);
     ASSERT_TRUE(r.fit && r.bias_model);
     print_choice("no bias", r);
     const BiasModelChoice& c = *r.bias_model;
@@ -143,7 +143,7 @@ TEST(BiasModelChoice, ForcedModelsAreKeptAsAsked) {
   FitOptions flat;
   flat.choose_bias_model = false;
   const std::vector<double> rate = simulate_rate(t, 0.01, 120000, 43);  // one record, three ways of fitting it
-  const ChannelResult rf = analyse(rate, 0.01, flat);
+  const ChannelResult rf = analyse_bias_model(rate, 0.01, flat);
   ASSERT_TRUE(rf.fit && rf.bias_model);
   EXPECT_EQ(rf.bias_model->requested, "flat");
   EXPECT_EQ(rf.bias_model->criterion, "none");
@@ -152,7 +152,7 @@ TEST(BiasModelChoice, ForcedModelsAreKeptAsAsked) {
   EXPECT_TRUE((*rf.fit)[ModelTerm::kB].in_model);
   FitOptions gm;
   gm.gauss_markov = true;
-  const ChannelResult rg = analyse(rate, 0.01, gm);
+  const ChannelResult rg = analyse_bias_model(rate, 0.01, gm);
   ASSERT_TRUE(rg.fit && rg.bias_model);
   EXPECT_EQ(rg.bias_model->requested, "gauss_markov");
   EXPECT_EQ(rg.bias_model->chosen, "gauss_markov");
@@ -161,7 +161,7 @@ TEST(BiasModelChoice, ForcedModelsAreKeptAsAsked) {
   // Without the likelihood fit (curve only) auto falls back to the flat B and says why.
   FitOptions curve;
   curve.likelihood = false;
-  const ChannelResult rc = analyse(rate, 0.01, curve);
+  const ChannelResult rc = analyse_bias_model(rate, 0.01, curve);
   ASSERT_TRUE(rc.fit && rc.bias_model);
   EXPECT_EQ(rc.bias_model->requested, "auto");
   EXPECT_EQ(rc.bias_model->criterion, "none");
@@ -184,7 +184,7 @@ TEST(BiasModelChoice, AGaussMarkovAtTheRandomWalksLevelIsTakenByAicAndKeepsKRigh
   const int seeds = 6;
   int gm_chosen = 0, bic_would_keep_flat = 0, k_within = 0;
   for (int seed = 1; seed <= seeds; ++seed) {
-    const ChannelResult r = analyse(simulate_rate(t, 0.01, 5760000, 900 + seed), 0.01);
+    const ChannelResult r = analyse_bias_model(simulate_rate(t, 0.01, 5760000, 900 + seed), 0.01);
     ASSERT_TRUE(r.fit && r.bias_model);
     ASSERT_EQ(r.fit->method, "whittle") << r.likelihood_error;
     print_choice("HG1900 gyro X", r);

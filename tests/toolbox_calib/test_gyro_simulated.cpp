@@ -33,7 +33,7 @@ VectorXd gyro_truth12(const ImuCalibration& t) {
   return x;
 }
 
-std::vector<Pose> known_poses(const testing::SimulatedLog& sim) {
+std::vector<Pose> gyro_known_poses(const testing::SimulatedLog& sim) {
   std::vector<Pose> poses;
   for (auto [b, e] : sim.pose_samples) poses.push_back(make_pose(sim.log, b, e));
   return poses;
@@ -64,7 +64,7 @@ TEST(GyroEarthRate, GivenSeveralSeedsThenNeesInsideChiSquareBand) {
   const int seeds = 8;
   for (int seed = 0; seed < seeds; ++seed) {
     const auto sim = testing::simulate_log(sensor, spec, 300 + seed);
-    const auto poses = known_poses(sim);
+    const auto poses = gyro_known_poses(sim);
     // The accelerometer calibration is taken as known, as the pipeline takes its own estimate.
     const GyroEarthRateModel model(sensor.truth.accel, spec.lat_rad, spec.h_m);
     const GaussHelmertResult r =
@@ -129,7 +129,7 @@ TEST(GyroRotation, GivenSeveralSeedsThenNeesInsideChiSquareBand) {
   const int seeds = 8;
   for (int seed = 0; seed < seeds; ++seed) {
     const auto sim = testing::simulate_log(sensor, spec, 500 + seed);
-    const auto poses = known_poses(sim);
+    const auto poses = gyro_known_poses(sim);
     const GyroRotationModel model(sim.log, poses, sensor.truth.accel, find_clipped_samples(sim.log));
     const GaussHelmertResult r = solve_gauss_helmert(model, model.blocks(), VectorXd::Zero(9));
     ASSERT_TRUE(r.converged);

@@ -12,7 +12,7 @@ std::vector<double> default_ev_grid() {
 }
 
 namespace {
-double rms(const std::vector<VectorXd>& w) {
+double rms_of_norms(const std::vector<VectorXd>& w) {
   double s = 0.0;
   size_t n = 0;
   for (const VectorXd& v : w) {
@@ -43,7 +43,7 @@ DampingSweep sweep_damping(const ConditionModel& model, const std::vector<Condit
     p.x = r.x;
     p.bias = r.x - undamped.x;
     p.sigma0 = r.sigma0;
-    p.rms_misclosure = rms(r.misclosure);
+    p.rms_misclosure = rms_of_norms(r.misclosure);
     const MatrixXd cov_z = s0 * s0 * d.asDiagonal() * r.cov_x_apriori * d.asDiagonal();
     p.max_cov_eigenvalue = Eigen::SelfAdjointEigenSolver<MatrixXd>(cov_z).eigenvalues().maxCoeff();
     p.mse = cov_z.trace() + d.cwiseProduct(p.bias).squaredNorm();

@@ -1,15 +1,16 @@
 #include "toolbox/diagnose/diagnosis.hpp"
 
-#include <limits>
-#include <stdexcept>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <limits>
 #include <sstream>
+#include <stdexcept>
 
 #include "estimator/calibrate/installed_imu_noise.hpp"
 #include "estimator/run/run_navigation.hpp"
+#include "toolbox/diagnose/filter_run.hpp"
 
 namespace ldv::diag {
 namespace {
@@ -30,9 +31,6 @@ std::vector<CandidateScore> final_ranking(const DiagnosisStep& first) {
       out.push_back(cs);
   return out;
 }
-
-
-double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
 std::vector<Segment> record_segments(const FilterRun& run, const std::vector<Segment>& labels) {
   std::vector<Segment> out;
@@ -124,7 +122,7 @@ void add_self_calibration_findings(Diagnosis& d) {
 
 Diagnosis diagnose(const DiagnoseInputs& in, const DiagnoseOptions& opt) {
   if (opt.max_added < 0) throw std::invalid_argument("diagnose: max_added must be >= 0, got " + std::to_string(opt.max_added));
-  const double cpu0 = cpu_seconds();
+  const double cpu0 = process_cpu_seconds();
   Diagnosis d;
   d.model = opt.model.model;
   est::FilterOptions current = opt.model;
@@ -192,7 +190,7 @@ Diagnosis diagnose(const DiagnoseInputs& in, const DiagnoseOptions& opt) {
   d.truth_before = truth_error(d.before, d.labels_before, in.truth, opt.truth_skip_s);
   d.truth_after = truth_error(d.after, d.labels_after, in.truth, opt.truth_skip_s);
   add_self_calibration_findings(d);
-  d.cpu_s = cpu_seconds() - cpu0;
+  d.cpu_s = process_cpu_seconds() - cpu0;
   return d;
 }
 

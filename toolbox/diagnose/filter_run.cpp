@@ -6,11 +6,12 @@ namespace ldv::diag {
 namespace {
 constexpr double kEpochPeriod_s = 0.1;
 
-double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 }  // namespace
 
+double process_cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
 FilterRun run_filter(const DiagnoseInputs& in, const est::FilterOptions& options, const CandidateSet* candidates) {
-  const double cpu0 = cpu_seconds();
+  const double cpu0 = process_cpu_seconds();
   FilterRun run;
   run.gate_probability = options.gate_probability;
   est::NavFilter filter(options);
@@ -46,7 +47,7 @@ FilterRun run_filter(const DiagnoseInputs& in, const est::FilterOptions& options
     e.std_si = sd.segment(b.offset, b.dim);
     run.estimates.push_back(std::move(e));
   }
-  run.cpu_s = cpu_seconds() - cpu0;
+  run.cpu_s = process_cpu_seconds() - cpu0;
   return run;
 }
 

@@ -55,4 +55,7 @@ struct FilterRun {
 FilterRun run_filter(const DiagnoseInputs& in, const est::FilterOptions& options,
                      const CandidateSet* candidates = nullptr);
 
+// The process's CPU time so far: what a run and a diagnosis report as their cost.
+double process_cpu_seconds();
+
 }  // namespace ldv::diag

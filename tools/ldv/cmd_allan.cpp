@@ -183,6 +183,6 @@ void add_allan_command(CLI::App& app) {
   cmd->callback([args] { run_allan(*args); });
 }
 
-const ldv::cli::RegisterCommand kRegister{"allan", &add_allan_command};
+const ldv::cli::RegisterCommand kRegisterAllanCommand{"allan", &add_allan_command};
 
 }  // namespace

@@ -129,6 +129,6 @@ void add_calib_command(CLI::App& app) {
   });
 }
 
-const ldv::cli::RegisterCommand kRegister{"calib", &add_calib_command};
+const ldv::cli::RegisterCommand kRegisterCalibCommand{"calib", &add_calib_command};
 
 }  // namespace

@@ -37,5 +37,5 @@ void add_compare_command(CLI::App& app) {
   c->callback([a] { run_compare(*a); });
 }
 
-const ldv::cli::RegisterCommand kRegister{"compare", &add_compare_command};
+const ldv::cli::RegisterCommand kRegisterCompareCommand{"compare", &add_compare_command};
 }  // namespace

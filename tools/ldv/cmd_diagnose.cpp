@@ -174,5 +174,5 @@ void add_diagnose_command(CLI::App& app) {
   c->callback([args] { run_diagnose(*args); });
 }
 
-const ldv::cli::RegisterCommand kRegister{"diagnose", &add_diagnose_command};
+const ldv::cli::RegisterCommand kRegisterDiagnoseCommand{"diagnose", &add_diagnose_command};
 }  // namespace

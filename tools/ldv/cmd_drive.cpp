@@ -99,7 +99,7 @@ void add_drive_command(CLI::App& app) {
   });
 }
 
-const RegisterCommand kRegister{"drive", &add_drive_command};
+const RegisterCommand kRegisterDriveCommand{"drive", &add_drive_command};
 
 }  // namespace
 }  // namespace ldv::cli

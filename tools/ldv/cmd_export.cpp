@@ -112,7 +112,7 @@ void add_export_command(CLI::App& app) {
   });
 }
 
-const RegisterCommand kRegister{"export", &add_export_command};
+const RegisterCommand kRegisterExportCommand{"export", &add_export_command};
 
 }  // namespace
 }  // namespace ldv::cli

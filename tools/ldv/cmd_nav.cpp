@@ -340,6 +340,6 @@ void add_smooth_command(CLI::App& app) {
   add_nav_options(c, args);
 }
 
-const ldv::cli::RegisterCommand kRegister{"nav", &add_nav_command};
+const ldv::cli::RegisterCommand kRegisterNavCommand{"nav", &add_nav_command};
 const ldv::cli::RegisterCommand kRegisterSmooth{"smooth", &add_smooth_command};
 }  // namespace

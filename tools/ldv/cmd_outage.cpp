@@ -72,5 +72,5 @@ void add_outage_command(CLI::App& app) {
   c->callback([a] { run_outage(*a); });
 }
 
-const ldv::cli::RegisterCommand kRegister{"outage", &add_outage_command};
+const ldv::cli::RegisterCommand kRegisterOutageCommand{"outage", &add_outage_command};
 }  // namespace

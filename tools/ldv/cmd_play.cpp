@@ -83,7 +83,7 @@ void add_play_command(CLI::App& app) {
   });
 }
 
-const RegisterCommand kRegister{"play", &add_play_command};
+const RegisterCommand kRegisterPlayCommand{"play", &add_play_command};
 
 }  // namespace
 }  // namespace ldv::cli

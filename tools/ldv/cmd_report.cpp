@@ -41,5 +41,5 @@ void add_report_command(CLI::App& app) {
   });
 }
 
-const ldv::cli::RegisterCommand kRegister{"report", &add_report_command};
+const ldv::cli::RegisterCommand kRegisterReportCommand{"report", &add_report_command};
 }  // namespace

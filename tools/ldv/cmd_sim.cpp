@@ -207,5 +207,5 @@ void add_sim_command(CLI::App& app) {
   cmd->callback([opts, cmd] { run(*opts, *cmd); });
 }
 
-const ldv::cli::RegisterCommand kRegister{"sim", &add_sim_command};
+const ldv::cli::RegisterCommand kRegisterSimCommand{"sim", &add_sim_command};
 }  // namespace

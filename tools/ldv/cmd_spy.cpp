@@ -202,7 +202,7 @@ void add_spy_command(CLI::App& app) {
   });
 }
 
-const RegisterCommand kRegister{"spy", &add_spy_command};
+const RegisterCommand kRegisterSpyCommand{"spy", &add_spy_command};
 
 }  // namespace
 }  // namespace ldv::cli
