@@ -5,7 +5,11 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 phase=${1:-all}
 if [[ $phase == all || $phase == configure ]]; then
-  cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+  # Ninja starts a target's compiles before the libraries it links are linked (make waits): a new tree uses it
+  # when it is installed; a tree configured before keeps its generator.
+  generator=()
+  if [[ ! -f build/CMakeCache.txt ]] && command -v ninja >/dev/null; then generator=(-G Ninja); fi
+  cmake "${generator[@]}" -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
 fi
 if [[ $phase == all || $phase == build ]]; then
   cmake --build build -j"$(nproc)"
