@@ -7,6 +7,7 @@
 //   time ldv diagnose --kfgins-config /tmp/d30/kfgins.yaml --json /tmp/d30/diag.json
 #include <benchmark/benchmark.h>
 
+#include "estimator/filter/nav_filter.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "sim/simulator.hpp"
 #include "toolbox/diagnose/diagnosis.hpp"

@@ -8,6 +8,7 @@
 
 #include "common/formats/kfgins_files.hpp"
 #include "estimator/calibrate/imu_latency.hpp"
+#include "estimator/filter/nav_filter.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "sim/simulator.hpp"
 

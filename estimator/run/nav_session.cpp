@@ -7,6 +7,7 @@
 
 #include "common/geo/earth_model.hpp"
 #include "estimator/calibrate/installed_imu_noise.hpp"
+#include "estimator/filter/nav_filter.hpp"
 #include "estimator/update/sensor_names.hpp"
 
 namespace ldv::est {
@@ -41,6 +42,8 @@ NavState turned_about_down(const NavState& aligned, double dyaw, const Vec3& lev
 }
 
 }  // namespace
+
+bool NavSession::navigating() const { return filter_.initialized(); }
 
 NavSession::NavSession(SessionOptions options, NavFilter& filter, EpochSink on_epoch)
     : o_(std::move(options)), on_epoch_(std::move(on_epoch)), filter_(filter), aligner_(o_.alignment) {

@@ -20,11 +20,17 @@
 #include <vector>
 
 #include "estimator/calibrate/imu_latency_window.hpp"
-#include "estimator/filter/nav_filter.hpp"
+#include "estimator/filter/imu_noise_scale.hpp"
 #include "estimator/ins/alignment.hpp"
+#include "estimator/ins/nav_state.hpp"
+#include "estimator/options.hpp"
 #include "estimator/run/heading_check.hpp"
+#include "estimator/update/observation.hpp"
 
 namespace ldv::est {
+
+class NavFilter;  // nav_filter.hpp: the session drives one it is given (a declaration keeps the includers of
+                  // this header from recompiling with every change of the filter)
 
 struct SessionOptions {
   FilterOptions filter;
@@ -92,7 +98,7 @@ class NavSession {
   // End of input: the alignment takes what is queued (the slow-course fallback and the heading trial too).
   void finish();
 
-  bool navigating() const { return filter_.initialized(); }
+  bool navigating() const;
   const NavFilter& filter() const { return filter_; }
   NavFilter& filter() { return filter_; }
   // "given", "warm start", or the alignment's method with what was decided (fallback, heading trial).

@@ -8,9 +8,11 @@
 #include "common/geo/earth_model.hpp"
 #include "common/io/input_error.hpp"
 #include "estimator/calibrate/installed_imu_noise.hpp"
+#include "estimator/filter/nav_filter.hpp"
 #include "estimator/ins/alignment.hpp"
 #include "estimator/run/alignment_options_from.hpp"
 #include "estimator/run/nav_session.hpp"
+#include "estimator/update/updater.hpp"
 
 namespace ldv::est {
 namespace {

@@ -6,7 +6,8 @@
 
 #include "common/formats/kfgins_config.hpp"
 #include "common/formats/nav_types.hpp"
-#include "estimator/filter/nav_filter.hpp"
+#include "estimator/filter/records.hpp"
+#include "estimator/filter/status.hpp"
 #include "estimator/ins/alignment.hpp"
 #include "estimator/run/nav_session.hpp"
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "common/geo/earth_model.hpp"
+#include "estimator/filter/nav_filter.hpp"
 #include "estimator/smooth/transition_product.hpp"
 
 namespace ldv::est {

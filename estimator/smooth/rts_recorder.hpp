@@ -15,10 +15,13 @@
 #include <optional>
 #include <vector>
 
-#include "estimator/filter/nav_filter.hpp"
+#include "estimator/filter/records.hpp"
+#include "estimator/ins/nav_state.hpp"
 #include "estimator/smooth/rts_backward.hpp"
 
 namespace ldv::est {
+
+class NavFilter;  // nav_filter.hpp (watched, never held)
 
 using Vec9 = Eigen::Matrix<double, 9, 1>;
 

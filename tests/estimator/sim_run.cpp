@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "common/geo/earth_model.hpp"
+#include "estimator/filter/nav_filter.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "estimator/smooth/rts_recorder.hpp"
 

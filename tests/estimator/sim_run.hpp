@@ -4,8 +4,9 @@
 #include <string>
 #include <vector>
 
-#include "estimator/filter/nav_filter.hpp"
+#include "estimator/options.hpp"
 #include "estimator/smooth/rts_recorder.hpp"
+#include "estimator/update/observation.hpp"
 #include "sim/simulator.hpp"
 #include "toolbox/allan/phase_series.hpp"
 

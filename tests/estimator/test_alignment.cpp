@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "common/geo/earth_model.hpp"
+#include "estimator/filter/nav_filter.hpp"
 #include "estimator/ins/alignment.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "sim/simulator.hpp"

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "common/geo/earth_model.hpp"
+#include "estimator/filter/nav_filter.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "sim/simulator.hpp"
 

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <vector>
 
+#include "estimator/filter/nav_filter.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "sim/simulator.hpp"
 #include "tests/estimator/sim_run.hpp"
@@ -50,7 +51,7 @@ struct Pass {
   double worst_horizontal_after_m = 0.0;  // the largest horizontal error against truth from `from_s` on
 };
 
-Pass run(const sim::SimResult& sim, const std::vector<GnssFix>& fixes, double from_s) {
+Pass run_retraction_drive(const sim::SimResult& sim, const std::vector<GnssFix>& fixes, double from_s) {
   NavFilter filter(installed_noise_options(sim));
   Pass p;
   const double t0 = sim.truth.front().t_s, dt = 1.0 / sim.request.imu_rate_hz;
@@ -88,7 +89,7 @@ TEST_P(EdgeFixRetraction, TheSecondOfTwoOutliersInARowIsUndoneWhenTheNextFixFits
   std::vector<GnssFix> fixes = sim.gnss;
   shift_fix(fixes[k], Vec3(0.32, -1.53, 2.38));
   // Pass 1 tells the second outlier's size: east, at the target NIS against the innovation covariance it meets.
-  const Pass first = run(sim, fixes, fixes[k].t_s);
+  const Pass first = run_retraction_drive(sim, fixes, fixes[k].t_s);
   const InnovationRecord* next = position_record_at(first.records, fixes[k + 1].t_s);
   ASSERT_NE(next, nullptr);
   ASSERT_FALSE(position_record_at(first.records, fixes[k].t_s)->used()) << "the 2.9 m jump was taken in";
@@ -105,10 +106,10 @@ TEST_P(EdgeFixRetraction, TheSecondOfTwoOutliersInARowIsUndoneWhenTheNextFixFits
 
   // Judged from the fix after the edge one: before it, the edge fix holds (nothing yet says it is wrong).
   const double judged_from_s = fixes[k + 2].t_s;
-  const Pass both = run(sim, fixes, judged_from_s);
+  const Pass both = run_retraction_drive(sim, fixes, judged_from_s);
   const InnovationRecord* edge = position_record_at(both.records, fixes[k + 1].t_s);
   ASSERT_NE(edge, nullptr);
-  const double clean_worst_m = run(sim, sim.gnss, judged_from_s).worst_horizontal_after_m;
+  const double clean_worst_m = run_retraction_drive(sim, sim.gnss, judged_from_s).worst_horizontal_after_m;
   std::printf(
       "the second outlier: NIS %.1f, %s; fixes retracted %ld, re-synchronisations %ld; worst horizontal "
       "error from the next fix on %.3f m (without any outlier %.3f m)\n",
@@ -130,7 +131,7 @@ INSTANTIATE_TEST_SUITE_P(AtTheGatesEdgeAndRightAfterARejection, EdgeFixRetractio
 // On the same drive with no outlier nothing is retracted (the data hold nothing to retract).
 TEST(EdgeFixRetractionClean, WithoutOutliersNothingIsRetracted) {
   const sim::SimResult sim = vibrating_mems_drive();
-  const Pass clean = run(sim, sim.gnss, sim.truth.front().t_s);
+  const Pass clean = run_retraction_drive(sim, sim.gnss, sim.truth.front().t_s);
   EXPECT_EQ(clean.summary.faults.fixes_retracted, 0);
 }
 

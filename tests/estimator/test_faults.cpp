@@ -10,6 +10,7 @@
 #include "common/formats/kfgins_files.hpp"
 #include "common/geo/earth_model.hpp"
 #include "common/io/input_error.hpp"
+#include "estimator/filter/nav_filter.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "estimator/smooth/rts_recorder.hpp"
 #include "sim/simulator.hpp"

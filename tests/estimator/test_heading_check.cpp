@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/geo/earth_model.hpp"
+#include "estimator/filter/nav_filter.hpp"
 #include "estimator/run/heading_check.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "sim/simulator.hpp"

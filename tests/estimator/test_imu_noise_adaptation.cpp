@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "estimator/filter/nav_filter.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "sim/imu_grade.hpp"
 #include "sim_run.hpp"

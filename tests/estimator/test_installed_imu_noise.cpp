@@ -6,6 +6,7 @@
 #include <string>
 
 #include "estimator/calibrate/installed_imu_noise.hpp"
+#include "estimator/filter/nav_filter.hpp"
 #include "estimator/run/nav_session.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "sim/simulator.hpp"
@@ -187,13 +188,13 @@ TEST(InstalledImuNoise, GivenAVrwOfZeroInTheConfiguration_ThenTheStandstillsMeas
 
 // A session fed as a live service feeds it (fixes 0.3 s after their epoch, no initial state: aligned from the
 // data): the mean velocity error over the filter's own sigma, squared (per dof, 1 Hz after 20 s of navigation).
-struct LiveRun {
+struct NoiseFloorLiveRun {
   std::string how;
   FilterOptions options;
   ImuNoiseScale floor;
   double vel_nees_per_dof = 0.0;
 };
-LiveRun run_live(const sim::SimResult& sim, const FilterOptions& fo) {
+NoiseFloorLiveRun run_live_noise_floor(const sim::SimResult& sim, const FilterOptions& fo) {
   KfGinsConfig cfg = sim.kfgins;
   cfg.init_pos.reset();
   cfg.init_vel_n_mps.reset();
@@ -227,7 +228,7 @@ TEST(InstalledImuNoise, GivenALiveSession_ThenTheStandstillBeforeTheStartSetsThe
   const FilterOptions datasheet = options_from_kfgins(sim.kfgins);
   FilterOptions no_vrw = datasheet;
   no_vrw.vrw_mps_per_sqrt_s.setZero();
-  const LiveRun filled = run_live(sim, no_vrw);
+  const NoiseFloorLiveRun filled = run_live_noise_floor(sim, no_vrw);
   std::printf("%s\n", filled.how.c_str());
   EXPECT_NE(filled.how.find("standstill before the start"), std::string::npos) << filled.how;
   for (int k = 0; k < 3; ++k) {
@@ -243,7 +244,7 @@ TEST(InstalledImuNoise, GivenALiveSession_ThenTheStandstillBeforeTheStartSetsThe
   installed.arw_rad_per_sqrt_s *= 10.0;
   installed.vrw_mps_per_sqrt_s *= 10.0;
   kept.installed_noise_floor = false;
-  const LiveRun right = run_live(sim, installed), zero = run_live(sim, kept);
+  const NoiseFloorLiveRun right = run_live_noise_floor(sim, installed), zero = run_live_noise_floor(sim, kept);
   std::printf("live velocity NEES per dof: measured %.2f, as installed %.2f, VRW 0 kept %.2f\n",
               filled.vel_nees_per_dof, right.vel_nees_per_dof, zero.vel_nees_per_dof);
   EXPECT_NEAR(filled.vel_nees_per_dof / right.vel_nees_per_dof, 1.0, 0.25);

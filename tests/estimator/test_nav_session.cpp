@@ -8,6 +8,7 @@
 
 #include "common/geo/earth_model.hpp"
 #include "estimator/calibrate/installed_imu_noise.hpp"
+#include "estimator/filter/nav_filter.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "sim/simulator.hpp"
 

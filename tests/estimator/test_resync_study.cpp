@@ -8,6 +8,7 @@
 #include <random>
 
 #include "common/geo/earth_model.hpp"
+#include "estimator/filter/nav_filter.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "sim/simulator.hpp"
 #include "tests/estimator/sim_run.hpp"

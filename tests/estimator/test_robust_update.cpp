@@ -10,6 +10,7 @@
 #include <cstdio>
 
 #include "common/geo/earth_model.hpp"
+#include "estimator/filter/nav_filter.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "estimator/update/kalman_update.hpp"
 #include "sim_run.hpp"

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <random>
 
+#include "estimator/filter/nav_filter.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "estimator/smooth/rts_recorder.hpp"
 #include "estimator/smooth/transition_product.hpp"

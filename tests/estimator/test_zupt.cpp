@@ -8,6 +8,7 @@
 #include <cmath>
 #include <string>
 
+#include "estimator/filter/nav_filter.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "sim_run.hpp"
 

@@ -16,6 +16,7 @@
 #include "common/io/input_error.hpp"
 #include "common/math/chi_square.hpp"
 #include "estimator/calibrate/gnss_velocity_check.hpp"
+#include "estimator/filter/nav_filter.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "estimator/update/odometer.hpp"
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "estimator/filter/nav_filter.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "estimator/smooth/rts_recorder.hpp"
 #include "toolbox/assess/nav_difference.hpp"

@@ -2,6 +2,8 @@
 
 #include <ctime>
 
+#include "estimator/filter/nav_filter.hpp"
+
 namespace ldv::diag {
 namespace {
 constexpr double kEpochPeriod_s = 0.1;

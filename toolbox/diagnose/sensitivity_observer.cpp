@@ -1,6 +1,7 @@
 #include "toolbox/diagnose/sensitivity_observer.hpp"
 
 #include "common/geo/earth_model.hpp"
+#include "estimator/filter/nav_filter.hpp"
 #include "estimator/state/state_layout.hpp"
 #include "estimator/update/gyro_coupling.hpp"
 

@@ -6,12 +6,15 @@
 //   measurement  s = H Psi + H_e            (E[innovation] = s e, innovation = z_hat - z)
 //                Psi <- Psi - K s           (the filter's correction also absorbs part of e)
 // Psi is n x P (n = the model's full error state, P = all candidate parameters).
+#include <Eigen/Core>
 #include <vector>
 
-#include <Eigen/Core>
-
-#include "estimator/filter/nav_filter.hpp"
+#include "estimator/filter/records.hpp"
 #include "toolbox/diagnose/candidates.hpp"
+
+namespace ldv::est {
+class NavFilter;  // nav_filter.hpp (watched, never held)
+}
 
 namespace ldv::diag {
 

@@ -4,6 +4,7 @@
 
 #include "common/io/text_table.hpp"
 #include "common/logging.hpp"
+#include "estimator/filter/nav_filter.hpp"
 
 namespace ldv::cli {
 namespace {

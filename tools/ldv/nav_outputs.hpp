@@ -8,8 +8,12 @@
 
 #include "common/formats/kfgins_files.hpp"
 #include "common/io/output_file.hpp"
-#include "estimator/filter/nav_filter.hpp"
 #include "estimator/smooth/rts_recorder.hpp"
+#include "estimator/state/state_layout.hpp"
+
+namespace ldv::est {
+class NavFilter;  // nav_filter.hpp (read, never held)
+}
 
 namespace ldv::cli {
 
