@@ -19,7 +19,11 @@ option(LDV_CCACHE "compile through ccache when it is installed" ON)
 if(LDV_CCACHE AND NOT CMAKE_CXX_COMPILER_LAUNCHER)
   find_program(LDV_CCACHE_PROGRAM ccache)
   if(LDV_CCACHE_PROGRAM)
-    set(CMAKE_CXX_COMPILER_LAUNCHER ${LDV_CCACHE_PROGRAM})
+    # With precompiled headers ccache caches only when told the header's macros and time stamps may be trusted
+    # (ccache's manual, "Precompiled headers").
+    set(CMAKE_CXX_COMPILER_LAUNCHER ${CMAKE_COMMAND} -E env
+                                    CCACHE_SLOPPINESS=pch_defines,time_macros,include_file_mtime,include_file_ctime
+                                    ${LDV_CCACHE_PROGRAM})
   endif()
 endif()
 

@@ -2,7 +2,7 @@
 # Installs the Debian 12 packages ldvnav needs to build, test and run (idempotent, non-interactive).
 set -euo pipefail
 PACKAGES=(
-  build-essential cmake ninja-build pkg-config git
+  build-essential cmake ninja-build ccache pkg-config git
   liblcm-dev liblcm-bin libglib2.0-dev
   libeigen3-dev libgeographiclib-dev libspdlog-dev libyaml-cpp-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev libsystemd-dev

@@ -1,5 +1,7 @@
 #include "common/bus/bus.hpp"
 
+#include <regex.h>
+
 #include <algorithm>
 #include <chrono>
 #include <stdexcept>
@@ -19,7 +21,23 @@ Bus::Bus(const std::string& url) : lcm_(std::make_unique<lcm::LCM>(url)) {
 
 Bus::~Bus() = default;
 
+void Bus::require_channel_expression(const std::string& channel) {
+  // LCM's own test of an expression (lcm.c, lcm_subscribe): "^" channel "$", extended, without sub-matches.
+  regex_t compiled;
+  const std::string anchored = "^" + channel + "$";
+  const int status = regcomp(&compiled, anchored.c_str(), REG_EXTENDED | REG_NOSUB);
+  if (status == 0) {
+    regfree(&compiled);
+    return;
+  }
+  char why[256];
+  regerror(status, &compiled, why, sizeof why);
+  throw std::invalid_argument("channel expression '" + channel + "' is not a POSIX extended regular expression (" +
+                              why + "); e.g. IMU, (IMU|GNSS_SOLUTION), STATUS_.*");
+}
+
 void Bus::subscribe_raw(const std::string& channel_regex, RawHandler handler, int queue_capacity) {
+  require_channel_expression(channel_regex);
   auto sub = std::make_unique<RawSubscription>(std::move(handler));
   lcm::Subscription* s = lcm_->subscribe(channel_regex, &RawSubscription::on_raw, sub.get());
   s->setQueueCapacity(queue_capacity);

@@ -28,9 +28,13 @@ class Bus {
     return lcm_->publish(channel, &msg) == 0;
   }
 
+  // Subscriptions take a channel expression as LCM does (POSIX extended, anchored: ^(channel)$ matches whole
+  // names); one regcomp refuses throws std::invalid_argument naming it (LCM 1.3.1 would hand back a subscription
+  // with no handler, and setting its queue crashed).
   template <class Msg>
   void subscribe(const std::string& channel, std::function<void(const Msg&, const std::string& channel)> handler,
                  int queue_capacity = 1000) {
+    require_channel_expression(channel);
     auto sub = std::make_unique<TypedSubscription<Msg>>(std::move(handler), &malformed_);
     lcm::Subscription* s = lcm_->subscribe(channel, &TypedSubscription<Msg>::on_raw, sub.get());
     s->setQueueCapacity(queue_capacity);
@@ -75,6 +79,7 @@ class Bus {
     RawHandler handler;
   };
 
+  static void require_channel_expression(const std::string& channel);
   std::unique_ptr<lcm::LCM> lcm_;
   std::vector<std::unique_ptr<SubscriptionBase>> subscriptions_;
   int64_t malformed_ = 0;

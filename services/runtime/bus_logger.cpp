@@ -8,11 +8,11 @@
 // (log_rotation.hpp; the file being written is never deleted). It is a service like the others
 // (heartbeat STATUS_LOGGER: received = events written, dropped = write errors; sd_notify), with a
 // clean stop on SIGTERM/SIGINT.
+#include <CLI/CLI.hpp>
 #include <csignal>
 #include <cstdio>
 #include <ctime>
-
-#include <CLI/CLI.hpp>
+#include <optional>
 
 #include "common/bus/bus.hpp"
 #include "common/logging.hpp"
@@ -43,29 +43,37 @@ int main(int argc, char** argv) {
   ldv::init_logging();
   try {
     ldv::ServiceRuntime rt("logger", url);
-    ldv::RotatingLogWriter log(rot, ldv::host_time_s);
-    rt.bus().subscribe_raw(channels, [&](const std::string& channel, const uint8_t* data, int size) {
-      if (log.write(channel, data, size, static_cast<int64_t>(ldv::host_time_s() * 1e6))) ++rt.counters().received;
-      else ++rt.counters().dropped;
-    }, queue);
+    // Subscribed before the file is opened (which truncates it): a channel expression the bus refuses must not
+    // cost the user an existing log. Nothing is dispatched before handle() below.
+    std::optional<ldv::RotatingLogWriter> log;
+    rt.bus().subscribe_raw(
+        channels,
+        [&](const std::string& channel, const uint8_t* data, int size) {
+          if (log->write(channel, data, size, static_cast<int64_t>(ldv::host_time_s() * 1e6)))
+            ++rt.counters().received;
+          else
+            ++rt.counters().dropped;
+        },
+        queue);
+    log.emplace(rot, ldv::host_time_s);
     rt.ready();
     double next_flush = ldv::host_time_s() + flush_s, next_retention = ldv::host_time_s() + retention_check_s;
     while (rt.running()) {
       rt.bus().handle(20);
       const double now = ldv::host_time_s();
       if (now >= next_flush) {
-        log.flush();
+        log->flush();
         next_flush = now + flush_s;
       }
       if (now >= next_retention) {  // ages pass and other files fill the disk without any rotation of ours
-        log.enforce_retention();
+        log->enforce_retention();
         next_retention = now + retention_check_s;
       }
       rt.tick();
     }
-    log.flush();
-    spdlog::info("ldv_logger: stopping ({} events written, {} write errors, {} rotations, {} files deleted)", rt.counters().received,
-                 rt.counters().dropped, log.rotations(), log.files_deleted());
+    log->flush();
+    spdlog::info("ldv_logger: stopping ({} events written, {} write errors, {} rotations, {} files deleted)",
+                 rt.counters().received, rt.counters().dropped, log->rotations(), log->files_deleted());
   } catch (const std::exception& e) {
     spdlog::error("ldv_logger: {}", e.what());
     return 1;

@@ -39,3 +39,28 @@ TEST(Bus, WrongFingerprintIsCountedNotDelivered) {
   EXPECT_EQ(delivered, 0);
   EXPECT_EQ(bus.malformed(), 1);
 }
+
+// LCM 1.3.1 returns a subscription without a handler for a channel expression regcomp refuses, and setting its
+// queue dereferenced NULL: `ldv_logger -c '*'` died with SIGSEGV. The bus refuses such an expression by name.
+TEST(Bus, GivenAChannelExpressionRegcompRefuses_WhenSubscribing_ThenAnErrorNamesItAndNothingCrashes) {
+  Bus bus("memq://");
+  for (const std::string bad : {"*", "IMU(", "[", "a{2,1}"}) {
+    try {
+      bus.subscribe_raw(bad, [](const std::string&, const uint8_t*, int) {});
+      ADD_FAILURE() << "'" << bad << "' accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("'" + bad + "'"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(bus.subscribe<ldv_lcm::imu_sample_t>(bad, [](const ldv_lcm::imu_sample_t&, const std::string&) {}),
+                 std::invalid_argument)
+        << bad;
+  }
+  int delivered = 0;  // the bus still works, and a valid expression still matches what LCM matches
+  bus.subscribe_raw("(IMU|GNSS_SOLUTION)", [&](const std::string&, const uint8_t*, int) { ++delivered; });
+  ldv_lcm::imu_sample_t m{};
+  ASSERT_TRUE(bus.publish("IMU", m));
+  ASSERT_TRUE(bus.publish("IMU_PPS", m));
+  while (bus.handle(0) > 0) {
+  }
+  EXPECT_EQ(delivered, 1);
+}

@@ -317,6 +317,66 @@ TEST(LcmLogFaults, GivenA2GbLengthInTheMiddleOfALongLog_ThenEveryEventAfterItIsR
   EXPECT_EQ(r.corrupt_events(), 1);
 }
 
+// Issue 46, item 2: the same 2 GB length in a real drive's log, through the commands that read logs: `ldv export`
+// and `ldv nav --lcm-log` lost the 12000 IMU after it. Every IMU message after it is exported and navigated.
+TEST(LcmLogFaults, GivenA2GbLengthInADrivesLog_ThenExportAndNavReadEverythingAfterIt) {
+  const fs::path dir = temp_dir("lcmlog_drive");
+  sim::SimRequest req;
+  req.grade = "hg1700-typical";
+  req.scenario = "drive";
+  req.duration_s = 120.0;
+  req.gnss_rate_hz = 5.0;
+  req.start_sow_s = 345600.0;
+  sim::SimResult sim = sim::simulate(req);
+  sim::write_outputs(sim, (dir / "sim").string());
+  const int week = 2300;
+  const fs::path log = dir / "drive.lcmlog";
+  const size_t corrupted = sim.imu.size() / 2;
+  {
+    std::ofstream f(log, std::ios::binary);
+    auto bytes = [](const auto& m) {
+      std::string b(static_cast<size_t>(m.getEncodedSize()), '\0');
+      m.encode(b.data(), 0, static_cast<int>(b.size()));
+      return b;
+    };
+    int64_t n = 0;
+    size_t g = 0;
+    for (size_t i = 0; i < sim.imu.size(); ++i) {
+      for (; g < sim.gnss.size() && sim.gnss[g].t_s <= sim.imu[i].t_s; ++g)
+        put_event(f, n++, "GNSS_SOLUTION", bytes(message_from_gnss(sim.gnss[g], week, static_cast<int64_t>(g))));
+      const std::string imu = bytes(message_from_imu(sim.imu[i], week, static_cast<int64_t>(i)));
+      put_event(f, n++, "IMU", imu, i == corrupted ? 0x7fffffffLL : -1);
+    }
+  }
+  const auto ex = run_ldv({"export", log.string(), "--out", (dir / "export").string()}, 120.0);
+  ASSERT_EQ(ex.exit_code, 0) << ex.output;
+  long imu_lines = 0;
+  {
+    std::ifstream in(dir / "export" / "imu.txt");
+    for (std::string line; std::getline(in, line);) imu_lines += !line.empty() && line[0] != '#';
+  }
+  // The one IMU message lost in the corrupt event is bridged (and said); none after it is lost.
+  EXPECT_EQ(imu_lines, static_cast<long>(sim.imu.size())) << ex.output;
+  EXPECT_NE(ex.output.find("1 corrupt log events skipped"), std::string::npos) << ex.output;
+  EXPECT_NE(ex.output.find("1 lost IMU samples bridged"), std::string::npos) << ex.output;
+
+  const auto nav = run_ldv({"nav", "--lcm-log", log.string(), "--kfgins-config", (dir / "sim" / "kfgins.yaml").string(),
+                            "--out", (dir / "nav" / "from_log.nav").string()},
+                           120.0);
+  ASSERT_EQ(nav.exit_code, 0) << nav.output;
+  EXPECT_NE(nav.output.find(std::to_string(sim.imu.size() - 1) + " IMU"), std::string::npos) << nav.output;
+  double last_sow = 0.0;
+  {
+    std::ifstream in(dir / "nav" / "from_log.nav");
+    double week_column = 0.0;
+    for (std::string line; std::getline(in, line);) {
+      std::istringstream row(line);
+      if (!line.empty() && line[0] != '#') row >> week_column >> last_sow;  // KF-GINS .nav: week, seconds of week, ...
+    }
+  }
+  EXPECT_NEAR(last_sow, sim.imu.back().t_s, 0.5) << "the navigation stopped at the corrupt event";
+}
+
 }  // namespace ldv
 
 namespace ldv {
@@ -437,6 +497,59 @@ TEST(CliFaults, GivenAFifoWithNoReaderAsOutput_ThenNavFailsAtOnceNamingIt) {
   EXPECT_FALSE(r.timed_out) << "hung on the FIFO";
   EXPECT_NE(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("a FIFO that nothing reads"), std::string::npos) << r.output;
+}
+
+// `ldv drive --imu-link PATH` deleted a regular file (or an empty folder) already at PATH to put its link there,
+// and took one path for both links (issue 46: nothing a tool links may remove what it did not create). A link
+// path may hold nothing or a symbolic link (a link an earlier drive left); anything else is refused, by option.
+TEST(CliFaults, GivenALinkPathHoldingAFileOrBothLinksOnOnePath_ThenDriveRefusesAndRemovesNothing) {
+  const fs::path dir = temp_dir("drive_links");
+  sim::SimRequest req;
+  req.grade = "hg1700-typical";
+  req.duration_s = 5.0;
+  sim::SimResult s = sim::simulate(req);
+  sim::write_outputs(s, (dir / "sim").string());
+  const fs::path user_file = dir / "notes.txt", empty_folder = dir / "folder";
+  std::ofstream(user_file) << "the user's own file\n";
+  fs::create_directories(empty_folder);
+  const std::string sim_dir = (dir / "sim").string(), free_path = (dir / "gnss_tty").string();
+
+  const auto on_file =
+      run_ldv({"drive", sim_dir, "--imu-link", user_file.string(), "--gnss-link", free_path, "--start-delay", "0"});
+  EXPECT_NE(on_file.exit_code, 0) << on_file.output;
+  EXPECT_NE(on_file.output.find("--imu-link"), std::string::npos) << on_file.output;
+  EXPECT_TRUE(fs::is_regular_file(user_file)) << "the user's file was removed";
+  EXPECT_FALSE(fs::exists(fs::symlink_status(free_path))) << "a link was left behind";
+
+  const auto on_folder =
+      run_ldv({"drive", sim_dir, "--imu-link", free_path, "--gnss-link", empty_folder.string(), "--start-delay", "0"});
+  EXPECT_NE(on_folder.exit_code, 0) << on_folder.output;
+  EXPECT_NE(on_folder.output.find("--gnss-link"), std::string::npos) << on_folder.output;
+  EXPECT_TRUE(fs::is_directory(empty_folder)) << "the user's folder was removed";
+
+  const auto same = run_ldv({"drive", sim_dir, "--imu-link", free_path, "--gnss-link",
+                             (dir / "." / "gnss_tty").string(), "--start-delay", "0"});
+  EXPECT_NE(same.exit_code, 0) << same.output;
+  EXPECT_NE(same.output.find("same path"), std::string::npos) << same.output;
+}
+
+// `ldv smooth --out newdir/sm.nav` failed with "newdir/sm_forward.nav: cannot open file for writing", a file the
+// user never named (issue 46, item 5): `nav` and `smooth` create the folder of --out as `sim` and `report` do.
+TEST(CliFaults, GivenAnOutPathInAFolderNotYetMade_ThenNavAndSmoothCreateIt) {
+  const fs::path dir = temp_dir("out_folder");
+  sim::SimRequest req;
+  req.grade = "hg1700-typical";
+  req.duration_s = 30.0;
+  req.gnss_rate_hz = 5.0;
+  sim::SimResult s = sim::simulate(req);
+  sim::write_outputs(s, (dir / "sim").string());
+  const std::string config = (dir / "sim" / "kfgins.yaml").string();
+  for (const char* command : {"nav", "smooth"}) {
+    const fs::path out = dir / (std::string("new_") + command) / "deeper" / "solution.nav";
+    const auto r = run_ldv({command, "--kfgins-config", config, "--out", out.string(), "--quiet"}, 120.0);
+    EXPECT_EQ(r.exit_code, 0) << command << ": " << r.output;
+    EXPECT_TRUE(fs::is_regular_file(out)) << command;
+  }
 }
 
 }  // namespace ldv

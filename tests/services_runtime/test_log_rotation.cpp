@@ -1,16 +1,16 @@
 // The bus logger's rotation and retention (services/runtime/log_rotation.hpp) on real files in a
 // temporary directory, fed through a real LCM memq:// bus as ldv_logger is fed from udpm://.
-#include <gtest/gtest.h>
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <set>
-
 #include <lcm/lcm-cpp.hpp>
 #include <ldv_lcm/service_status_t.hpp>
+#include <set>
 
 #include "common/bus/bus.hpp"
 #include "services/runtime/log_rotation.hpp"
@@ -255,4 +255,25 @@ TEST(LogRotation, WithoutRotation_ThenTheOneFileIsWrittenAsLcmLoggerWouldAndRete
   o.max_file_mb = 512;
   o.max_total_mb = 100;
   EXPECT_THROW(RotatingLogWriter(o, host_time_s), std::invalid_argument) << "a total below one file";
+}
+
+// `ldv_logger -c '*' FILE` truncated an existing FILE to 0 bytes, then died with SIGSEGV (issue 46, data lost):
+// a channel expression the bus refuses is an error before anything is opened for writing.
+TEST(BusLogger, GivenAnInvalidChannelRegexAndAnExistingLog_WhenStarted_ThenItExitsWithAnErrorAndTheLogIsKept) {
+  TempDir dir;
+  const fs::path log = dir.path / "kept.lcmlog";
+  const std::string kept(4096, 'x');
+  std::ofstream(log, std::ios::binary) << kept;
+  const std::string out = (dir.path / "logger.txt").string();
+  const std::string cmd =
+      std::string(LDV_BIN_DIR) + "/ldv_logger --lcm-url memq:// -c '*' " + log.string() + " >" + out + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(status)) << "ldv_logger died by a signal (status " << status << ")";
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  std::ifstream in(log, std::ios::binary);
+  const std::string now((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(now, kept) << "the existing log was changed";
+  std::ifstream msg(out);
+  const std::string text((std::istreambuf_iterator<char>(msg)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("'*'"), std::string::npos) << text;
 }

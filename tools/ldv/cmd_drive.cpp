@@ -27,6 +27,18 @@ struct Pty {
   std::string slave_name;
 };
 
+// A link path may hold nothing, or a symbolic link (one an earlier drive left): the drive replaces only that.
+// Anything else (the user's file or folder) is refused, naming the option, before anything is created.
+void require_free_link_path(const std::string& option, const std::string& link_path) {
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(link_path, ec);
+  if (st.type() == fs::file_type::not_found || fs::is_symlink(st)) return;
+  throw InputError(link_path, 0,
+                   option + ": the path holds a " + (fs::is_directory(st) ? "folder" : "file") +
+                       " that is not a link; ldv drive puts a symbolic link to its pseudo-terminal there and removes "
+                       "nothing it did not create (give a free path)");
+}
+
 Pty open_pty_linked_to(const std::string& link_path) {
   Pty p;
   char name[256] = {};
@@ -39,6 +51,13 @@ Pty open_pty_linked_to(const std::string& link_path) {
   fs::remove(link_path, ec);
   fs::create_symlink(p.slave_name, link_path);
   return p;
+}
+
+// At the end the link goes, if it is still the one this drive made (someone may have put another there).
+void remove_own_link(const std::string& link_path, const std::string& pty_name) {
+  std::error_code ec;
+  if (fs::is_symlink(fs::symlink_status(link_path, ec)) && fs::read_symlink(link_path, ec) == pty_name)
+    fs::remove(link_path, ec);
 }
 
 std::vector<char> read_all(const fs::path& p) {
@@ -57,6 +76,10 @@ void add_drive_command(CLI::App& app) {
   cmd->add_option("--speed", speed, "playback speed (1 = real time)")->check(CLI::PositiveNumber);
   cmd->add_option("--start-delay", start_delay_s, "seconds between creating the ptys and the first byte");
   cmd->callback([] {
+    require_free_link_path("--imu-link", imu_link);
+    require_free_link_path("--gnss-link", gnss_link);
+    if (fs::weakly_canonical(fs::absolute(imu_link)) == fs::weakly_canonical(fs::absolute(gnss_link)))
+      throw InputError(imu_link, 0, "--imu-link and --gnss-link are the same path: each device needs its own link");
     const std::vector<char> streams[2] = {read_all(fs::path(dir) / "imu_device.bin"), read_all(fs::path(dir) / "gnss.nmea")};
     struct Chunk {
       double sow_s;
@@ -93,9 +116,8 @@ void add_drive_command(CLI::App& app) {
       ::close(p.master);
       ::close(p.slave);
     }
-    std::error_code ec;
-    fs::remove(imu_link, ec);
-    fs::remove(gnss_link, ec);
+    remove_own_link(imu_link, ptys[0].slave_name);
+    remove_own_link(gnss_link, ptys[1].slave_name);
   });
 }
 
