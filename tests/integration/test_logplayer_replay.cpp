@@ -1,7 +1,7 @@
 // Replay with Debian's own lcm-logplayer (issue 16; DESIGN.md: "lcm-logger records everything; lcm-logplayer
 // replays it"). A short live run of the whole vehicle system (the simulated IMU time-stamp unit and GNSS
 // receiver on ptys in real time, imu_acq, gnss_link, fusion, tspi_pub, the bus logger) is recorded; then
-// lcm-logplayer plays its inputs (IMU, GNSS_SOLUTION, GNSS_PPS) at twice real time into a freshly started
+// lcm-logplayer plays its inputs (IMU, GNSS_SOLUTION, GNSS_PPS) at 8x real time into a freshly started
 // fusion with the same configuration and a fresh tspi_pub, the logger records what fusion publishes, and:
 //  - the replayed NAV equals the live NAV epoch for epoch: fusion's output depends only on its inputs and
 //    their order (late fixes rewind the filter, so a NAV is the state given the fixes that had arrived; the
@@ -204,7 +204,8 @@ TEST(
   for (const char* ch : {"IMU", "GNSS_SOLUTION", "GNSS_PPS", "IMU_PPS", "IMU_TIMING"})
     ASSERT_TRUE(live_counts.count(ch)) << ch;
 
-  // And lcm-logplayer replays its inputs at twice real time into a fresh fusion (and tspi_pub), recorded
+  // And lcm-logplayer replays its inputs at 8x real time into a fresh fusion (and tspi_pub), recorded (the test is
+  // about equality, which holds at any pace fusion keeps up with; 2x only made it wait)
   const std::string replay_log = (dir / "replay.lcmlog").string();
   std::vector<ldv_lcm::tspi_v1_t> remote_tspi;
   {
@@ -219,7 +220,7 @@ TEST(
     })) << "heartbeats of fusion, tspi_pub and the logger within 30 s";
     test::ChildProcess player("/bin/sh",
                               {"-c", "exec \"$0\" \"$@\" >>'" + (dir / "logplayer.log").string() + "' 2>&1", kLogplayer,
-                               "--lcm-url=" + kBusUrl, "-e", "(IMU|GNSS_SOLUTION|GNSS_PPS)", "--speed", "2", live_log});
+                               "--lcm-url=" + kBusUrl, "-e", "(IMU|GNSS_SOLUTION|GNSS_PPS)", "--speed", "8", live_log});
     int played = 1000;
     w.spin(kDriveDuration_s + 60.0, [&] { return (played = player.wait_exit(0.01)) != 1000; });
     EXPECT_EQ(played, 0) << "lcm-logplayer (see " << dir << "/logplayer.log)";
