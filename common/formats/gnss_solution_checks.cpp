@@ -17,9 +17,9 @@ std::optional<std::string> implausibility(const GpsTime& t) {
   return std::nullopt;
 }
 
-std::optional<std::string> implausibility(const GnssSolution& s) {
-  if (auto why = implausibility(s.time)) return why;
-  const GnssFix& f = s.fix;
+namespace {
+// Everything of a solution but its time: the place, the covariance the update will use, the std, the velocity.
+std::optional<std::string> fix_implausibility(const GnssFix& f, const Mat3& pos_cov_ned_m2) {
   constexpr double kPi = std::numbers::pi;
   if (!std::isfinite(f.pos.lat_rad) || std::abs(f.pos.lat_rad) > kPi / 2)
     return "latitude " + six_significant(f.pos.lat_rad * 180.0 / kPi) + " deg not in [-90, 90]";
@@ -28,16 +28,16 @@ std::optional<std::string> implausibility(const GnssSolution& s) {
   if (!std::isfinite(f.pos.h_m) || f.pos.h_m < kMinPlausibleHeight_m || f.pos.h_m > kMaxPlausibleHeight_m)
     return "height " + six_significant(f.pos.h_m) + " m not in [" + six_significant(kMinPlausibleHeight_m) + ", " +
            six_significant(kMaxPlausibleHeight_m) + "]";
-  if (!s.pos_cov_ned_m2.allFinite() || !(s.pos_cov_ned_m2.diagonal().array() > 0.0).all() ||
-      !(s.pos_cov_ned_m2.diagonal().array() <= kMaxPlausiblePositionVariance_m2).all())
-    return "position variances (" + six_significant(s.pos_cov_ned_m2(0, 0)) + ", " +
-           six_significant(s.pos_cov_ned_m2(1, 1)) + ", " + six_significant(s.pos_cov_ned_m2(2, 2)) +
+  if (!pos_cov_ned_m2.allFinite() || !(pos_cov_ned_m2.diagonal().array() > 0.0).all() ||
+      !(pos_cov_ned_m2.diagonal().array() <= kMaxPlausiblePositionVariance_m2).all())
+    return "position variances (" + six_significant(pos_cov_ned_m2(0, 0)) + ", " +
+           six_significant(pos_cov_ned_m2(1, 1)) + ", " + six_significant(pos_cov_ned_m2(2, 2)) +
            ") m^2 not positive, finite and below " + six_significant(kMaxPlausiblePositionVariance_m2);
   // Positive-definite after scaling by the diagonal (a correlation matrix): a variance of 1e-300 beside 1 m^2
   // must not fail for rounding alone.
   {
-    const Vec3 inv_std = s.pos_cov_ned_m2.diagonal().cwiseSqrt().cwiseInverse();
-    const Mat3 corr = inv_std.asDiagonal() * s.pos_cov_ned_m2 * inv_std.asDiagonal();
+    const Vec3 inv_std = pos_cov_ned_m2.diagonal().cwiseSqrt().cwiseInverse();
+    const Mat3 corr = inv_std.asDiagonal() * pos_cov_ned_m2 * inv_std.asDiagonal();
     if (!corr.allFinite() || (corr - corr.transpose()).cwiseAbs().maxCoeff() > 1e-6 ||
         Eigen::SelfAdjointEigenSolver<Mat3>(corr).eigenvalues().minCoeff() <= 0.0)
       return "position covariance not symmetric positive-definite";
@@ -57,6 +57,16 @@ std::optional<std::string> implausibility(const GnssSolution& s) {
   if (!std::isfinite(f.age_s) || !std::isfinite(f.ratio) || f.num_sats < 0)
     return "age, ratio or satellite count not finite and >= 0";
   return std::nullopt;
+}
+}  // namespace
+
+std::optional<std::string> implausibility(const GnssSolution& s) {
+  if (auto why = implausibility(s.time)) return why;
+  return fix_implausibility(s.fix, s.pos_cov_ned_m2);
+}
+
+std::optional<std::string> implausibility(const GnssFix& fix) {
+  return fix_implausibility(fix, fix.pos_std_ned_m.cwiseAbs2().asDiagonal().toDenseMatrix());
 }
 
 std::optional<std::string> implausibility(const PpsTimeLabel& label) {

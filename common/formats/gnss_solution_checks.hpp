@@ -27,6 +27,9 @@ constexpr double kMaxPlausiblePositionVariance_m2 = 1e12;
 
 // Why `s` cannot be a real solution ("time of week 3085367 s not in [0, 604800)"), nullopt when plausible.
 std::optional<std::string> implausibility(const GnssSolution& s);
+// The same of a fix without a GPS week (a KF-GINS gnss.txt row: seconds only), its covariance the stated std
+// squared: one check for every reader of GNSS solutions, files and bus alike.
+std::optional<std::string> implausibility(const GnssFix& fix);
 std::optional<std::string> implausibility(const PpsTimeLabel& label);
 // The GPS time part of the above.
 std::optional<std::string> implausibility(const GpsTime& t);

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <memory>
 
+#include "common/formats/gnss_solution_checks.hpp"
 #include "common/formats/imu_time_gaps.hpp"
 #include "common/io/text_table.hpp"
 #include "common/logging.hpp"
@@ -246,6 +247,10 @@ std::vector<GnssFix> read_kfgins_gnss(const std::string& path, GnssReadReport* r
     }
     if ((g.pos_std_ned_m.array() <= 0).any() || (g.has_velocity && (g.vel_std_n_mps.array() <= 0).any())) {
       rep.dropped.add(DropReason::kOutOfRange, path, line, "every std must be positive");
+      continue;
+    }
+    if (const auto why = gnss::implausibility(g)) {  // what the .pos reader and the bus refuse, refused here too
+      rep.dropped.add(DropReason::kOutOfRange, path, line, *why);
       continue;
     }
     if (!out.empty() && g.t_s <= out.back().t_s) {

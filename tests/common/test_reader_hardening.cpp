@@ -154,6 +154,33 @@ TEST(KfGinsGnssColumns, TheFirstDataLineDecidesSevenOrThirteen) {
             std::string::npos);
 }
 
+// Issue 46, readers that disagree: gnss.txt took a height of -1e7 m and a std of 1e200 m (whose square is inf, which
+// then reached the innovations file and the diagnosis) that the .pos reader and the bus refuse. One check for all
+// (gnss::implausibility of the fix): each such row is dropped, counted and named by its line.
+TEST(KfGinsGnssPlausibility, GivenRowsTheRtklibReaderRefuses_ThenGnssTxtDropsThemByLine) {
+  std::string text;
+  for (int i = 0; i < 60; ++i) {
+    std::string row = std::to_string(100 + i) + " 30.1 114.2 20.0 0.01 0.02 0.03\n";
+    if (i == 10) row = "110 30.1 114.2 -1e7 0.01 0.02 0.03\n";   // a height below any ellipsoidal one
+    if (i == 20) row = "120 30.1 114.2 20.0 1e200 0.02 0.03\n";  // its variance is inf
+    if (i == 30) row = "130 30.1 114.2 1e300 0.01 0.02 0.03\n";  // above any flight
+    text += row;
+  }
+  const std::string p = write_temp("gnss_implausible.txt", text);
+  GnssReadReport rep;
+  const auto g = read_kfgins_gnss(p, &rep);
+  EXPECT_EQ(g.size(), 57u);
+  EXPECT_EQ(rep.dropped[DropReason::kOutOfRange], 3);
+  const std::string& first = rep.dropped.first[static_cast<int>(DropReason::kOutOfRange)];
+  EXPECT_NE(first.find("gnss_implausible.txt:11:"), std::string::npos) << first;
+  EXPECT_NE(first.find("height"), std::string::npos) << first;
+  for (const GnssFix& f : g) {
+    EXPECT_TRUE(f.pos_std_ned_m.cwiseAbs2().allFinite());
+    EXPECT_GT(f.pos.h_m, -1000.0);
+    EXPECT_LT(f.pos.h_m, 1e5);
+  }
+}
+
 // Defect 4: a 1e6 s hole was integrated as one increment and reported as "gaps 0".
 TEST(KfGinsImuTime, HolesBackwardsRepeatsAndJumpsAreCountedByReason) {
   std::string text = imu_file(50);                            // 100.00 .. 100.49
