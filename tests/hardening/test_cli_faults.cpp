@@ -552,4 +552,24 @@ TEST(CliFaults, GivenAnOutPathInAFolderNotYetMade_ThenNavAndSmoothCreateIt) {
   }
 }
 
+// Issue 46, item 5: `ldv help` said "A subcommand is required", and exit codes for errors varied (1, 2, 105, 106)
+// with no table. `ldv help [COMMAND]` prints the help; the codes are one table for every command: 0 done, 1 the
+// work failed, 2 the input was refused, 64 the command line is wrong.
+TEST(CliFaults, GivenHelpAndEachKindOfError_ThenTheHelpIsPrintedAndTheExitCodeSaysWhichKind) {
+  const auto help = run_ldv({"help"});
+  EXPECT_EQ(help.exit_code, 0) << help.output;
+  for (const char* command : {"nav", "smooth", "diagnose", "allan", "outage", "export"})
+    EXPECT_NE(help.output.find(command), std::string::npos) << command << " missing from: " << help.output;
+  const auto help_nav = run_ldv({"help", "nav"});
+  EXPECT_EQ(help_nav.exit_code, 0) << help_nav.output;
+  EXPECT_NE(help_nav.output.find("--kfgins-config"), std::string::npos) << help_nav.output;
+  EXPECT_EQ(run_ldv({"help", "no_such_command"}).exit_code, 64);
+  EXPECT_EQ(run_ldv({}).exit_code, 64);
+  EXPECT_EQ(run_ldv({"nav", "--no-such-option"}).exit_code, 64);
+  EXPECT_EQ(run_ldv({"drive"}).exit_code, 64);  // its required argument (the sim folder) missing
+  const auto refused = run_ldv({"nav", "--kfgins-config", "/nonexistent/kfgins.yaml"});
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_EQ(run_ldv({"--version"}).exit_code, 0);
+}
+
 }  // namespace ldv
