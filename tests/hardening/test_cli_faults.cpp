@@ -38,6 +38,17 @@ fs::path temp_dir(const std::string& name) {
   return d;
 }
 
+// A tactical-grade straight run of `duration_s` with 5 Hz GNSS written as `ldv sim` writes it, in dir/sim.
+fs::path simulated_files(const fs::path& dir, double duration_s) {
+  sim::SimRequest req;
+  req.grade = "hg1700-typical";
+  req.duration_s = duration_s;
+  req.gnss_rate_hz = 5.0;
+  sim::SimResult s = sim::simulate(req);
+  sim::write_outputs(s, (dir / "sim").string());
+  return dir / "sim";
+}
+
 // White rate noise as a CSV with a time column (an accelerometer-like channel).
 fs::path write_rate_csv(const fs::path& dir, double scale, int rows, double dt_s = 0.01) {
   const fs::path p = dir / ("rate_" + std::to_string(rows) + ".csv");
@@ -484,12 +495,7 @@ TEST(CliFaults, GivenASolutionRowAtLatitude1e308_ThenCompareNamesTheLineInsteadO
 
 TEST(CliFaults, GivenAFifoWithNoReaderAsOutput_ThenNavFailsAtOnceNamingIt) {
   const fs::path dir = temp_dir("nav_fifo");
-  sim::SimRequest req;
-  req.grade = "hg1700-typical";
-  req.duration_s = 30.0;
-  req.gnss_rate_hz = 5.0;
-  sim::SimResult s = sim::simulate(req);
-  sim::write_outputs(s, (dir / "sim").string());
+  simulated_files(dir, 30.0);
   const fs::path fifo = dir / "out.fifo";
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
   const auto r = run_ldv({"nav", "--kfgins-config", (dir / "sim" / "kfgins.yaml").string(), "--out", fifo.string()},
@@ -504,11 +510,7 @@ TEST(CliFaults, GivenAFifoWithNoReaderAsOutput_ThenNavFailsAtOnceNamingIt) {
 // path may hold nothing or a symbolic link (a link an earlier drive left); anything else is refused, by option.
 TEST(CliFaults, GivenALinkPathHoldingAFileOrBothLinksOnOnePath_ThenDriveRefusesAndRemovesNothing) {
   const fs::path dir = temp_dir("drive_links");
-  sim::SimRequest req;
-  req.grade = "hg1700-typical";
-  req.duration_s = 5.0;
-  sim::SimResult s = sim::simulate(req);
-  sim::write_outputs(s, (dir / "sim").string());
+  simulated_files(dir, 5.0);
   const fs::path user_file = dir / "notes.txt", empty_folder = dir / "folder";
   std::ofstream(user_file) << "the user's own file\n";
   fs::create_directories(empty_folder);
@@ -537,13 +539,7 @@ TEST(CliFaults, GivenALinkPathHoldingAFileOrBothLinksOnOnePath_ThenDriveRefusesA
 // user never named (issue 46, item 5): `nav` and `smooth` create the folder of --out as `sim` and `report` do.
 TEST(CliFaults, GivenAnOutPathInAFolderNotYetMade_ThenNavAndSmoothCreateIt) {
   const fs::path dir = temp_dir("out_folder");
-  sim::SimRequest req;
-  req.grade = "hg1700-typical";
-  req.duration_s = 30.0;
-  req.gnss_rate_hz = 5.0;
-  sim::SimResult s = sim::simulate(req);
-  sim::write_outputs(s, (dir / "sim").string());
-  const std::string config = (dir / "sim" / "kfgins.yaml").string();
+  const std::string config = (simulated_files(dir, 30.0) / "kfgins.yaml").string();
   for (const char* command : {"nav", "smooth"}) {
     const fs::path out = dir / (std::string("new_") + command) / "deeper" / "solution.nav";
     const auto r = run_ldv({command, "--kfgins-config", config, "--out", out.string(), "--quiet"}, 120.0);
