@@ -568,4 +568,22 @@ TEST(CliFaults, GivenHelpAndEachKindOfError_ThenTheHelpIsPrintedAndTheExitCodeSa
   EXPECT_EQ(run_ldv({"--version"}).exit_code, 0);
 }
 
+// Issue 46, item 4: a NUL inside a path of a KF-GINS configuration was untested. A YAML "\0" in imupath is refused
+// by key and line (the C file API would open the path cut at the NUL: another file than the user named).
+TEST(CliFaults, GivenANulInsideAConfiguredPath_ThenNavRefusesNamingTheKeyAndLine) {
+  const fs::path sim_dir = simulated_files(temp_dir("nul_path"), 10.0);
+  const fs::path config = sim_dir / "kfgins_nul.yaml";
+  {
+    std::ifstream in(sim_dir / "kfgins.yaml");
+    std::ofstream out(config);
+    for (std::string line; std::getline(in, line);)
+      out << (line.rfind("imupath:", 0) == 0 ? "imupath: \"" + (sim_dir / "imu\\0.txt").string() + "\"" : line) << "\n";
+  }
+  const auto r = run_ldv({"nav", "--kfgins-config", config.string(), "--out", (sim_dir / "nul.nav").string()});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("key 'imupath': expected a path string without a NUL character"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find(config.string() + ":"), std::string::npos) << r.output;
+}
+
 }  // namespace ldv

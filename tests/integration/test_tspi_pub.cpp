@@ -113,4 +113,11 @@ TEST(BusUrl, GivenATcpqBusWithNoServer_ThenFusionSpyAndPlayExitWithAClearError) 
   std::tie(rc, err) = run_to_exit(bin + "/ldv", {"spy", "--url", url}, "tcpq_spy");
   EXPECT_EQ(rc, 1) << err;
   EXPECT_NE(err.find("not connected"), std::string::npos) << err;
+  // `ldv play` too (issue 46, item 4: the test carried its name but never ran it).
+  const std::string run_dir = (std::filesystem::temp_directory_path() / "ldv_tcpq_play_sim").string();
+  std::tie(rc, err) = run_to_exit(bin + "/ldv", {"sim", "--out", run_dir, "--duration", "5"}, "tcpq_sim");
+  ASSERT_EQ(rc, 0) << err;
+  std::tie(rc, err) = run_to_exit(bin + "/ldv", {"play", run_dir, "--url", url, "--week", "2300"}, "tcpq_play");
+  EXPECT_EQ(rc, 1) << err;
+  EXPECT_NE(err.find("not connected"), std::string::npos) << err;
 }
