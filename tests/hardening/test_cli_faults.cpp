@@ -386,6 +386,16 @@ TEST(LcmLogFaults, GivenA2GbLengthInADrivesLog_ThenExportAndNavReadEverythingAft
     }
   }
   EXPECT_NEAR(last_sow, sim.imu.back().t_s, 0.5) << "the navigation stopped at the corrupt event";
+
+  // `ldv spy` on the log (file://) crashed inside LCM's file provider (SIGSEGV) and, on a sound log, never ended:
+  // it reads the log to its end, counts every message and shows the last one's time.
+  const auto spy = run_ldv({"spy", "--once", "--url", "file://" + log.string()}, 60.0);
+  ASSERT_EQ(spy.exit_code, 0) << spy.output;
+  EXPECT_NE(spy.output.find(std::to_string(sim.imu.size() - 1)), std::string::npos) << spy.output;
+  EXPECT_NE(spy.output.find("1 corrupt log events skipped"), std::string::npos) << spy.output;
+  char last_imu[64];
+  std::snprintf(last_imu, sizeof last_imu, "sow %.4f", sim.imu.back().t_s);
+  EXPECT_NE(spy.output.find(last_imu), std::string::npos) << spy.output;
 }
 
 }  // namespace ldv

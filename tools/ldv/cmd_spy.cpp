@@ -18,6 +18,7 @@
 #include <thread>
 
 #include "common/bus/bus.hpp"
+#include "common/bus/lcm_log_reader.hpp"
 #include "common/bus/message_conversions.hpp"
 #include "services/fusion/nav_message.hpp"
 #include "tools/ldv/command_registry.hpp"
@@ -63,7 +64,12 @@ bool describe(const uint8_t* data, int size, std::string& type, std::string& tex
   bad = false;
   const int64_t fp = fingerprint_of(data, size);
   auto decode = [&](auto& m) {
-    if (m.decode(data, 0, size) < 0) {
+    const int decoded = m.decode(data, 0, size);
+    // LCM 1.3.1's decoders store double fields through an int64_t pointer (lcm_coretypes.h), against C++'s
+    // aliasing rules: inlined here, where the message was value-initialised, GCC -O2 kept the 0.0 it knew and every
+    // decoded time and position showed as 0.000. The barrier tells the compiler memory changed: fields are re-read.
+    asm volatile("" : : "r"(&m) : "memory");
+    if (decoded < 0) {
       bad = true;
       return false;
     }
@@ -161,17 +167,16 @@ void add_spy_command(CLI::App& app) {
   static std::string url;
   static double duration_s = 0;
   static bool once = false;
-  cmd->add_option("--url", url, "LCM URL (default: LCM_DEFAULT_URL or LCM's default)");
+  cmd->add_option("--url", url,
+                  "LCM URL (default: LCM_DEFAULT_URL or LCM's default); file://LOG reads a recorded log to its end");
   cmd->add_option("--duration", duration_s, "stop after this many seconds (0: until Ctrl-C)");
   cmd->add_flag("--once", once, "print one table at the end instead of refreshing the screen");
   cmd->callback([] {
-    Bus bus(url);
     std::map<std::string, ChannelView> channels;
-    bus.subscribe_raw(".*", [&](const std::string& channel, const uint8_t* data, int size) {
+    auto take = [&](const std::string& channel, const uint8_t* data, int size, double arrival_s) {
       auto& v = channels[channel];
       ++v.count;
-      const double t = now_s();
-      v.arrivals_s.push_back(t);
+      v.arrivals_s.push_back(arrival_s);
       if (v.arrivals_s.size() > 4000) v.arrivals_s.erase(v.arrivals_s.begin(), v.arrivals_s.begin() + 2000);
       std::string type, text;
       int64_t seq = 0;
@@ -188,7 +193,28 @@ void add_spy_command(CLI::App& app) {
         v.type = "(not ours)";
         v.latest = std::to_string(size) + " bytes";
       }
-    });
+    };
+    // A recorded log (file://PATH[?options]) is read with our own reader: LCM's file provider trusts the length
+    // fields (a corrupt 2 GB event crashed it) and never ends. Rates are over the logger's receive times.
+    if (url.rfind("file://", 0) == 0) {
+      const std::string path =
+          url.substr(7, url.find('?') == std::string::npos ? std::string::npos : url.find('?') - 7);
+      LcmLogReader log(path);
+      LcmLogEvent ev;
+      double last_s = 0.0;
+      while (log.next(ev)) {
+        last_s = ev.timestamp_us * 1e-6;
+        take(ev.channel, ev.data.data(), static_cast<int>(ev.data.size()), last_s);
+      }
+      print_table(channels, last_s, false);
+      if (log.corrupt_events() + log.truncated_events() > 0)
+        std::printf("%s: %ld corrupt log events skipped, %ld cut short at the end\n", path.c_str(),
+                    log.corrupt_events(), log.truncated_events());
+      return;
+    }
+    Bus bus(url);
+    bus.subscribe_raw(
+        ".*", [&](const std::string& channel, const uint8_t* data, int size) { take(channel, data, size, now_s()); });
     const double start = now_s();
     double next_print = start + 1.0;
     while (duration_s <= 0 || now_s() - start < duration_s) {
