@@ -4,7 +4,6 @@
 #include <initializer_list>
 #include <optional>
 #include <set>
-#include <sstream>
 
 #include "common/io/input_error.hpp"
 #include "common/io/number_text.hpp"

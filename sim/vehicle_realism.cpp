@@ -1,7 +1,6 @@
 #include "sim/vehicle_realism.hpp"
 
 #include <cmath>
-#include <sstream>
 
 #include "common/io/input_error.hpp"
 #include "common/io/number_text.hpp"

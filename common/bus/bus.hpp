@@ -6,11 +6,12 @@
 // - SequenceTracker counts gaps in the per-publisher sequence numbers every message carries.
 #include <cstdint>
 #include <functional>
+#include <lcm/lcm-cpp.hpp>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include <lcm/lcm-cpp.hpp>
+#include "common/bus/decode_message.hpp"
 
 namespace ldv {
 
@@ -61,7 +62,7 @@ class Bus {
         : handler(std::move(h)), malformed_count(malformed) {}
     void on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
       Msg msg;
-      if (msg.decode(rbuf->data, 0, rbuf->data_size) < 0) {
+      if (!decode_message(rbuf->data, static_cast<int>(rbuf->data_size), msg)) {
         ++*malformed_count;
         return;
       }

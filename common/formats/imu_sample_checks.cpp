@@ -1,7 +1,6 @@
 #include "common/formats/imu_sample_checks.hpp"
 
 #include <cmath>
-#include <cstdio>
 
 #include "common/io/number_text.hpp"
 

@@ -2,7 +2,6 @@
 
 #include <charconv>
 #include <cmath>
-#include <numbers>
 #include <vector>
 
 #include "common/math/rotation.hpp"

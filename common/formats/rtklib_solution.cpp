@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
-#include <numbers>
 
 #include "common/formats/gnss_solution_checks.hpp"
 #include "common/geo/earth_model.hpp"

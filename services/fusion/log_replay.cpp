@@ -1,5 +1,6 @@
 #include "services/fusion/log_replay.hpp"
 
+#include "common/bus/decode_message.hpp"
 #include "common/bus/lcm_log_reader.hpp"
 #include "common/bus/message_conversions.hpp"
 #include "common/io/input_error.hpp"
@@ -25,7 +26,7 @@ LogReplaySummary replay_fusion_log(const std::string& log_path, FusionEngine& en
     const double arrival_s = ev.timestamp_us * 1e-6;  // logger receive time [us] -> s
     if (ev.channel == imu_channel) {
       ldv_lcm::imu_sample_t m;
-      if (m.decode(ev.data.data(), 0, static_cast<int>(ev.data.size())) < 0) {
+      if (!decode_message(ev.data, m)) {
         ++sum.malformed;
         continue;
       }
@@ -43,7 +44,7 @@ LogReplaySummary replay_fusion_log(const std::string& log_path, FusionEngine& en
       engine.on_imu(imu_from_message(m), m.gps_week, arrival_s, outs);
     } else if (ev.channel == gnss_channel) {
       ldv_lcm::gnss_solution_t m;
-      if (m.decode(ev.data.data(), 0, static_cast<int>(ev.data.size())) < 0 || gate.check(m) != InputVerdict::kAccepted) {
+      if (!decode_message(ev.data, m) || gate.check(m) != InputVerdict::kAccepted) {
         ++sum.malformed;
         continue;
       }
@@ -51,7 +52,7 @@ LogReplaySummary replay_fusion_log(const std::string& log_path, FusionEngine& en
       engine.on_gnss(gnss_from_message(m), m.gps_week, arrival_s);
     } else if (ev.channel == kWheelSpeedChannel && engine.wants_odometer()) {
       ldv_lcm::wheel_speed_t m;
-      const bool decoded = m.decode(ev.data.data(), 0, static_cast<int>(ev.data.size())) >= 0;
+      const bool decoded = decode_message(ev.data, m);
       const InputVerdict v = decoded ? gate.check(m) : InputVerdict::kNotFinite;
       if (v == InputVerdict::kNotUsable) continue;  // flagged by the sensor itself: expected, not malformed
       if (v != InputVerdict::kAccepted) {

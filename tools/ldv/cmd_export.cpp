@@ -4,10 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-
 #include <ldv_lcm/nav_state_t.hpp>
 #include <ldv_lcm/tspi_v1_t.hpp>
 
+#include "common/bus/decode_message.hpp"
 #include "common/bus/lcm_log_reader.hpp"
 #include "common/bus/message_conversions.hpp"
 #include "common/formats/kfgins_files.hpp"
@@ -50,24 +50,36 @@ void add_export_command(CLI::App& app) {
       while (log.next(ev)) {
         if (ev.channel == "IMU") {
           ldv_lcm::imu_sample_t m;
-          if (m.decode(ev.data.data(), 0, static_cast<int>(ev.data.size())) < 0 || !is_valid(m)) { ++malformed; continue; }
+          if (!decode_message(ev.data, m) || !is_valid(m)) {
+            ++malformed;
+            continue;
+          }
           if (!has_gps_time(m)) { ++unlocked; continue; }  // stamped before imu_acq locked to PPS
           imu.push_back(imu_from_message(m));
           imu.back().t_s = gps_time.seconds(m.gps_week, m.gps_sow_s);
         } else if (ev.channel == "GNSS_SOLUTION") {
           ldv_lcm::gnss_solution_t m;
-          if (m.decode(ev.data.data(), 0, static_cast<int>(ev.data.size())) < 0 || !is_valid(m)) { ++malformed; continue; }
+          if (!decode_message(ev.data, m) || !is_valid(m)) {
+            ++malformed;
+            continue;
+          }
           gnss.push_back(gnss_from_message(m));
           gnss.back().t_s = gps_time.seconds(m.gps_week, m.gps_sow_s);
         } else if (ev.channel == "NAV") {
           ldv_lcm::nav_state_t m;
-          if (m.decode(ev.data.data(), 0, static_cast<int>(ev.data.size())) < 0) { ++malformed; continue; }
+          if (!decode_message(ev.data, m)) {
+            ++malformed;
+            continue;
+          }
           if (!nav) nav = std::make_unique<NavWriter>((fs::path(out_dir) / "nav.nav").string());
           nav->write(nav_record_of(m));
           ++nav_n;
         } else if (ev.channel == "TSPI") {
           ldv_lcm::tspi_v1_t m;
-          if (m.decode(ev.data.data(), 0, static_cast<int>(ev.data.size())) < 0) { ++malformed; continue; }
+          if (!decode_message(ev.data, m)) {
+            ++malformed;
+            continue;
+          }
           if (!tspi) tspi = std::make_unique<NavWriter>((fs::path(out_dir) / "tspi.nav").string());
           tspi->write(nav_record_of(m));
           ++tspi_n;

@@ -64,13 +64,14 @@ int week_from_config(const KfGinsConfig& cfg) {
 // The .nav path (--out, else the configuration's outputpath), its folder made if it is not there yet (`ldv smooth`
 // writes FILE_forward.nav and the other outputs beside it).
 std::string default_nav_path(const NavArgs& a, const KfGinsConfig& cfg) {
-  const fs::path out_folder = fs::path(a.out).parent_path();
-  const std::string dir = !a.out.empty() ? (out_folder.empty() ? "." : out_folder.string())
-                                         : (cfg.output_path.empty() ? "." : cfg.output_path);
+  const fs::path nav = !a.out.empty()
+                           ? fs::path(a.out)
+                           : fs::path(cfg.output_path.empty() ? "." : cfg.output_path) / "KF_GINS_Navresult.nav";
+  const std::string dir = nav.parent_path().empty() ? "." : nav.parent_path().string();
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw InputError(dir, 0, "cannot create the output directory: " + ec.message());
-  return !a.out.empty() ? a.out : (fs::path(dir) / "KF_GINS_Navresult.nav").string();
+  return nav.string();
 }
 
 // standstill_s: the standstill the IMU noise as installed was measured over (0: none).

@@ -18,6 +18,7 @@
 #include <thread>
 
 #include "common/bus/bus.hpp"
+#include "common/bus/decode_message.hpp"
 #include "common/bus/lcm_log_reader.hpp"
 #include "common/bus/message_conversions.hpp"
 #include "services/fusion/nav_message.hpp"
@@ -46,11 +47,6 @@ int64_t fingerprint_of(const uint8_t* data, int size) {
   return static_cast<int64_t>(h);
 }
 
-template <class Msg>
-bool try_decode(const uint8_t* data, int size, Msg& m) {
-  return fingerprint_of(data, size) == Msg::getHash() && m.decode(data, 0, size) >= 0;
-}
-
 std::string fixed(double v, int d) {
   std::ostringstream o;
   o.setf(std::ios::fixed);
@@ -64,12 +60,7 @@ bool describe(const uint8_t* data, int size, std::string& type, std::string& tex
   bad = false;
   const int64_t fp = fingerprint_of(data, size);
   auto decode = [&](auto& m) {
-    const int decoded = m.decode(data, 0, size);
-    // LCM 1.3.1's decoders store double fields through an int64_t pointer (lcm_coretypes.h), against C++'s
-    // aliasing rules: inlined here, where the message was value-initialised, GCC -O2 kept the 0.0 it knew and every
-    // decoded time and position showed as 0.000. The barrier tells the compiler memory changed: fields are re-read.
-    asm volatile("" : : "r"(&m) : "memory");
-    if (decoded < 0) {
+    if (!decode_message(data, size, m)) {
       bad = true;
       return false;
     }
@@ -197,8 +188,8 @@ void add_spy_command(CLI::App& app) {
     // A recorded log (file://PATH[?options]) is read with our own reader: LCM's file provider trusts the length
     // fields (a corrupt 2 GB event crashed it) and never ends. Rates are over the logger's receive times.
     if (url.rfind("file://", 0) == 0) {
-      const std::string path =
-          url.substr(7, url.find('?') == std::string::npos ? std::string::npos : url.find('?') - 7);
+      const size_t query = url.find('?');
+      const std::string path = url.substr(7, query == std::string::npos ? std::string::npos : query - 7);
       LcmLogReader log(path);
       LcmLogEvent ev;
       double last_s = 0.0;
