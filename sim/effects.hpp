@@ -16,6 +16,9 @@ struct EffectInfo {
   std::vector<double> si_per_unit;     // SI = value * si_per_unit (per value)
   std::vector<double> defaults;        // engineering units
   std::string meaning;
+  // Largest magnitude a physical sensor or installation could show (engineering units, per value): beyond it
+  // the number is a typing error, not an effect (a 1e9 m lever arm wrote latitudes of 8742 deg). Empty: no bound.
+  std::vector<double> max_abs{};
 };
 
 const std::vector<EffectInfo>& effect_table();

@@ -21,14 +21,16 @@ namespace {
 
 void validate(const SimRequest& r) {
   auto fail = [](const std::string& opt, const std::string& msg) { throw InputError(opt, 0, msg); };
-  if (!(r.duration_s > 0) || !std::isfinite(r.duration_s))
-    fail("--duration", "expected a positive number of seconds, found " + six_significant(r.duration_s));
+  if (!(r.duration_s > 0 && r.duration_s < kSecondsPerWeek))
+    fail("--duration",
+         "expected a positive number of seconds below one GPS week (604800), found " + six_significant(r.duration_s));
   if (!(r.imu_rate_hz >= 1.0 && r.imu_rate_hz <= 4000.0))
     fail("--imu-rate", "expected an IMU rate in [1, 4000] Hz, found " + six_significant(r.imu_rate_hz));
   if (!(r.gnss_rate_hz > 0.0 && r.gnss_rate_hz <= 50.0))
     fail("--gnss-rate", "expected a GNSS rate in (0, 50] Hz, found " + six_significant(r.gnss_rate_hz));
   if (r.gnss_rate_hz > r.imu_rate_hz) fail("--gnss-rate", "expected a GNSS rate not above the IMU rate");
-  if (r.gps_week < 0) fail("--gps-week", "expected a non-negative GPS week, found " + std::to_string(r.gps_week));
+  if (r.gps_week < 0 || r.gps_week > 9999)
+    fail("--gps-week", "expected a GPS week in [0, 9999], found " + std::to_string(r.gps_week));
   if (!(r.start_sow_s >= 0.0 && r.start_sow_s + r.duration_s < kSecondsPerWeek))
     fail("--start-sow", "expected the run to stay within one GPS week: start " + six_significant(r.start_sow_s) +
                             " s + duration " + six_significant(r.duration_s) + " s must be below 604800 s");

@@ -175,3 +175,21 @@ TEST(SimEffects, BadEffectSpecificationsNameTheEffectAndTheExpectation) {
   EXPECT_NE(err("gyro_bais").find("unknown effect 'gyro_bais'"), std::string::npos);
   EXPECT_NE(err("time_offset=0.1,0.2").find("expected 1 comma-separated values [s]"), std::string::npos);
 }
+
+// Issue 46 (6): a 1e9 m lever arm simulated a drive with latitudes of 8742 deg; sizes no sensor or installation
+// shows are refused, naming the effect, the value and the bound, while the largest real ones still simulate.
+TEST(SimEffects, SizesNoPhysicalSensorShowsAreRefusedByEffectAndValue) {
+  auto err = [](const std::string& spec) {
+    SimRequest q = perfect_request("static", 10.0);
+    q.effects = {spec};
+    return input_error_of([&] { simulate(q); });
+  };
+  const std::string lever = err("lever_arm=1e9,0,0");
+  EXPECT_NE(lever.find("effect 'lever_arm': value 1 ("), std::string::npos) << lever;
+  EXPECT_NE(lever.find("expected |value| <= 100"), std::string::npos) << lever;
+  EXPECT_NE(err("gyro_bias=0,0,-1e7").find("value 3"), std::string::npos);
+  EXPECT_NE(err("time_offset=3600").find("effect 'time_offset'"), std::string::npos);
+  EXPECT_NE(err("accel_moving_bias=0.2,0.05,1e12,0.02,0.02").find("value 3"), std::string::npos);
+  EXPECT_EQ(err("lever_arm=40,-2,-15"), "");     // a ship's mast: a real size
+  EXPECT_EQ(err("accel_bias=200,-100,50"), "");  // a poor consumer MEMS
+}

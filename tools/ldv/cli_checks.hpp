@@ -3,10 +3,12 @@
 // with NaN is false), so ldv uses these instead; and every option of every subcommand refuses a number
 // that is not finite ("nan", "inf", "1e999"), so no NaN reaches a planner, a filter or a loop bound.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 namespace ldv::cli {
 
@@ -47,6 +49,14 @@ inline CLI::Validator finite_positive(double hi = 1e300) {
       "POSITIVE", "FINITE_POSITIVE");
 }
 
+// An option whose number the library checks where it uses it, naming the option (e.g. ldv sim's request
+// validation: the same bounds for the command line and for callers of the library). Marked so that
+// unbounded_number_options() passes it; the default suite gives each such option 1e12 and -1e12 and requires the
+// refusal (tests/hardening/test_cli_numbers.cpp).
+inline CLI::Validator checked_where_used() {
+  return CLI::Validator([](std::string&) -> std::string { return {}; }, "", "CHECKED_WHERE_USED");
+}
+
 // Every option, in every subcommand: a value that spells a number must spell a finite one.
 inline void refuse_non_finite_numbers(CLI::App& app) {
   const CLI::Validator finite(
@@ -58,6 +68,54 @@ inline void refuse_non_finite_numbers(CLI::App& app) {
       "", "FINITE");
   for (CLI::Option* o : app.get_options()) o->check(finite);
   for (CLI::App* sub : app.get_subcommands({})) refuse_non_finite_numbers(*sub);
+}
+
+// Options that take a number but carry no bounds (finite_range, finite_positive, CLI::Range or checked_where_used): a
+// number a user can give is checked where it is given (issue 46: `--week 99999999`, `calib static --height-m` reached
+// the work unchecked). `ldv help --unbounded-numbers` lists them; the default suite requires the list to be empty.
+inline std::vector<std::string> unbounded_number_options(const CLI::App& app, const std::string& path = "ldv") {
+  std::vector<std::string> found;
+  for (const CLI::Option* o : app.get_options()) {
+    const std::string type = o->get_type_name();
+    const bool takes_number = o->get_type_size() > 0 && (type.rfind("FLOAT", 0) == 0 || type.rfind("INT", 0) == 0 ||
+                                                         type.rfind("UINT", 0) == 0 || type.rfind("NUMBER", 0) == 0);
+    if (!takes_number) continue;
+    bool bounded = false;
+    for (int i = 0;; ++i) {
+      const CLI::Validator* v = nullptr;
+      try {
+        v = const_cast<CLI::Option*>(o)->get_validator(i);
+      } catch (const CLI::OptionNotFound&) {
+        break;
+      }
+      // CLI::Range describes itself "TYPE in [lo - hi]" (NaN is refused by refuse_non_finite_numbers)
+      bounded |= v->get_name() == "FINITE_RANGE" || v->get_name() == "FINITE_POSITIVE" ||
+                 v->get_name() == "CHECKED_WHERE_USED" || v->get_description().find(" in [") != std::string::npos;
+    }
+    if (!bounded) found.push_back(path + " " + o->get_name());
+  }
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+    auto more = unbounded_number_options(*sub, path + " " + sub->get_name());
+    found.insert(found.end(), more.begin(), more.end());
+  }
+  return found;
+}
+
+// The options marked checked_where_used(), as "ldv sub --option VALUES" (VALUES: how many numbers it expects).
+inline std::vector<std::string> checked_where_used_options(const CLI::App& app, const std::string& path = "ldv") {
+  std::vector<std::string> found;
+  for (const CLI::Option* o : app.get_options()) {
+    try {
+      const_cast<CLI::Option*>(o)->get_validator("CHECKED_WHERE_USED");
+      found.push_back(path + " " + o->get_name() + " " + std::to_string(std::max(1, o->get_expected_min())));
+    } catch (const CLI::OptionNotFound&) {
+    }
+  }
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+    auto more = checked_where_used_options(*sub, path + " " + sub->get_name());
+    found.insert(found.end(), more.begin(), more.end());
+  }
+  return found;
 }
 
 }  // namespace ldv::cli

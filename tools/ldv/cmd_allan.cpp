@@ -138,10 +138,14 @@ void add_allan_command(CLI::App& app) {
   cmd->add_option("--columns", args->columns, "csv: columns to analyse, by header name or 1-based index")->delimiter(',');
   cmd->add_option("--units", args->units,
                   "unit of the columns, one or one per column: rad/s deg/s deg/h rad/h m/s^2 g mg ug 1")->delimiter(',');
-  cmd->add_option("--counts-per-unit", args->counts_per_unit, "raw counts per unit (e.g. 131 for an MPU-6050 gyro in deg/s)")
-      ->delimiter(',');
+  cmd->add_option("--counts-per-unit", args->counts_per_unit,
+                  "raw counts per unit (e.g. 131 for an MPU-6050 gyro in deg/s)")
+      ->delimiter(',')
+      ->check(ldv::cli::finite_positive(1e12));
   cmd->add_option("--time-column", args->time_column, "csv: time column [s], used for the sample interval");
-  cmd->add_option("--nominal", args->nominal, "frequency: values are absolute [Hz] around this nominal; analyse (f-f0)/f0");
+  cmd->add_option("--nominal", args->nominal,
+                  "frequency: values are absolute [Hz] around this nominal; analyse (f-f0)/f0")
+      ->check(ldv::cli::finite_positive(1e15));
   cmd->add_option("--json", args->json, "write results (SI units) to this JSON file");
   cmd->add_option("--plot", args->plot, "write a log-log plot (PNG, via gnuplot)");
   cmd->add_option("--noise-config", args->noise_config, "write the KF-GINS imunoise YAML block to this file");
@@ -150,8 +154,11 @@ void add_allan_command(CLI::App& app) {
   cmd->add_option("--taus", args->taus, "tau spacing: all | octave | log (default log)")
       ->check(CLI::IsMember({"all", "octave", "log"}));
   cmd->add_option("--per-decade", args->per_decade, "log spacing: taus per decade (default 10)")->check(CLI::Range(1, 1000));
-  cmd->add_option("--tau-list", args->tau_list, "explicit taus [s], comma separated")->delimiter(',');
-  cmd->add_option("--max-tau", args->max_tau, "largest tau [s] (default: N/4 samples)")->check(CLI::PositiveNumber);
+  cmd->add_option("--tau-list", args->tau_list, "explicit taus [s], comma separated")
+      ->delimiter(',')
+      ->check(ldv::cli::finite_positive(1e12));
+  cmd->add_option("--max-tau", args->max_tau, "largest tau [s] (default: N/4 samples)")
+      ->check(ldv::cli::finite_positive(1e12));
   cmd->add_option("--confidence", args->confidence, "confidence of the deviation intervals (default 0.683, Stable32's)")
       ->check(CLI::Range(0.01, 0.9999));
   cmd->add_option("--terms", args->terms, "noise terms to fit, any of QNBKR (default QNBKR)");
@@ -174,7 +181,8 @@ void add_allan_command(CLI::App& app) {
                 "fit the Allan variance curve only (default for rate input: refine N, B, K, R by the likelihood of the raw data)");
   cmd->add_option("--likelihood-block", args->likelihood_block_s,
                   "the likelihood fit averages the rate over blocks of this length first [s]")
-      ->check(CLI::PositiveNumber);
+
+      ->check(ldv::cli::finite_positive(1e9));
   cmd->add_option("--target-precision", args->target_precision,
                   "report the record length at which each resolved term reaches this relative 1-sigma (default 0.1)")
       ->check(CLI::Range(1e-4, 1.0));

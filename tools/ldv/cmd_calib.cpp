@@ -8,6 +8,7 @@
 #include "common/logging.hpp"
 #include "toolbox/calib/calib_report.hpp"
 #include "toolbox/calib/static_calibration.hpp"
+#include "tools/ldv/cli_checks.hpp"
 #include "tools/ldv/command_registry.hpp"
 
 namespace {
@@ -101,23 +102,40 @@ void add_calib_command(CLI::App& app) {
   st->add_option("--acc-units", args->acc_units, "accelerometer unit after dividing by counts: m/s^2 | g")
       ->capture_default_str();
   st->add_option("--acc-counts-per-unit", args->acc_counts_per_unit, "nominal counts per acc unit (1: not counts)")
-      ->capture_default_str();
-  st->add_option("--acc-offset-counts", args->acc_offset_counts, "raw zero offset removed first (e.g. 32768)");
+      ->capture_default_str()
+      ->check(ldv::cli::finite_positive(1e12));
+  st->add_option("--acc-offset-counts", args->acc_offset_counts, "raw zero offset removed first (e.g. 32768)")
+      ->check(ldv::cli::finite_range(-1e12, 1e12));
   st->add_option("--gyro-units", args->gyro_units, "rad/s | deg/s | deg/h")->capture_default_str();
   st->add_option("--gyro-counts-per-unit", args->gyro_counts_per_unit, "nominal counts per gyro unit")
-      ->capture_default_str();
-  st->add_option("--gyro-offset-counts", args->gyro_offset_counts, "raw zero offset removed first");
+      ->capture_default_str()
+      ->check(ldv::cli::finite_positive(1e12));
+  st->add_option("--gyro-offset-counts", args->gyro_offset_counts, "raw zero offset removed first")
+      ->check(ldv::cli::finite_range(-1e12, 1e12));
   st->add_option("--gyro-full-scale", args->gyro_full_scale,
-                 "gyro range in --gyro-units (e.g. 250 deg/s); motions that reach it are left out (0: detect)");
-  st->add_option("--rate", args->rate_hz, "sample rate [Hz] (default: time column or file header)");
+                 "gyro range in --gyro-units (e.g. 250 deg/s); motions that reach it are left out (0: detect)")
+      ->check(ldv::cli::finite_positive(1e12));
+  st->add_option("--rate", args->rate_hz, "sample rate [Hz] (default: time column or file header)")
+      ->check(ldv::cli::finite_positive(1e6));
   st->add_option("--columns", args->columns, "csv column names, e.g. t,ax,ay,az,gx,gy,gz ('-' skips one)");
-  st->add_option("--lat-deg", args->lat_deg, "latitude for normal gravity and Earth rate")->capture_default_str();
-  st->add_option("--height-m", args->height_m, "ellipsoidal height")->capture_default_str();
-  st->add_option("--gravity", args->gravity_mps2, "local gravity magnitude [m/s^2] (overrides normal gravity)");
-  st->add_option("--init-static-s", args->init_static_s, "initial static period (default: file header or 30 s)");
-  st->add_option("--window-s", args->window_s, "variance window of the detector")->capture_default_str();
-  st->add_option("--min-pose-s", args->min_pose_s, "shortest static pose kept")->capture_default_str();
-  st->add_option("--threshold-mult", args->threshold_multiplier, "detector threshold multiplier (0: search 2..10)");
+  st->add_option("--lat-deg", args->lat_deg, "latitude for normal gravity and Earth rate")
+      ->capture_default_str()
+      ->check(ldv::cli::finite_range(-90, 90));
+  st->add_option("--height-m", args->height_m, "ellipsoidal height")
+      ->capture_default_str()
+      ->check(ldv::cli::finite_range(-12000, 100000));
+  st->add_option("--gravity", args->gravity_mps2, "local gravity magnitude [m/s^2] (overrides normal gravity)")
+      ->check(ldv::cli::finite_range(9.7, 9.9));
+  st->add_option("--init-static-s", args->init_static_s, "initial static period (default: file header or 30 s)")
+      ->check(ldv::cli::finite_range(0, 1e6));
+  st->add_option("--window-s", args->window_s, "variance window of the detector")
+      ->capture_default_str()
+      ->check(ldv::cli::finite_positive(1e5));
+  st->add_option("--min-pose-s", args->min_pose_s, "shortest static pose kept")
+      ->capture_default_str()
+      ->check(ldv::cli::finite_range(0, 1e5));
+  st->add_option("--threshold-mult", args->threshold_multiplier, "detector threshold multiplier (0: search 2..10)")
+      ->check(ldv::cli::finite_range(0, 1e3));
   st->add_option("--gyro-method", args->gyro_method, "auto | earth-rate | rotation | none")->capture_default_str();
   st->add_option("--ev", args->ev, "damping constant EV: auto (sweep, minimum MSE) or a value")->capture_default_str();
   st->add_option("--json", args->json_path, "write the full result as JSON");

@@ -5,6 +5,7 @@
 
 #include "common/formats/kfgins_files.hpp"
 #include "toolbox/assess/solution_comparison.hpp"
+#include "tools/ldv/cli_checks.hpp"
 #include "tools/ldv/command_registry.hpp"
 
 namespace {
@@ -31,8 +32,9 @@ void add_compare_command(CLI::App& app) {
   CLI::App* c = app.add_subcommand("compare", "differences between two .nav solutions (paper Tables 10-11)");
   c->add_option("A", a->a, "solution (.nav)")->required();
   c->add_option("B", a->b, "reference solution or truth (.nav), interpolated at A's epochs")->required();
-  c->add_option("--settle", a->options.settle_s, "skip A's first seconds [s]");
-  c->add_option("--max-gap", a->options.max_gap_s, "do not interpolate B across longer gaps [s]");
+  c->add_option("--settle", a->options.settle_s, "skip A's first seconds [s]")->check(ldv::cli::finite_range(0, 1e7));
+  c->add_option("--max-gap", a->options.max_gap_s, "do not interpolate B across longer gaps [s]")
+      ->check(ldv::cli::finite_positive(1e7));
   c->add_flag("--json", a->json, "print JSON instead of the table");
   c->callback([a] { run_compare(*a); });
 }

@@ -16,6 +16,7 @@
 
 #include "common/io/input_error.hpp"
 #include "common/io/text_table.hpp"
+#include "tools/ldv/cli_checks.hpp"
 #include "tools/ldv/command_registry.hpp"
 
 namespace ldv::cli {
@@ -73,8 +74,9 @@ void add_drive_command(CLI::App& app) {
   cmd->add_option("dir", dir, "an `ldv sim` output directory (imu_device.bin, gnss.nmea, device_schedule.txt)")->required();
   cmd->add_option("--imu-link", imu_link, "path linked to the IMU pty (imu_acq's serial device)");
   cmd->add_option("--gnss-link", gnss_link, "path linked to the GNSS pty (gnss_link's serial device)");
-  cmd->add_option("--speed", speed, "playback speed (1 = real time)")->check(CLI::PositiveNumber);
-  cmd->add_option("--start-delay", start_delay_s, "seconds between creating the ptys and the first byte");
+  cmd->add_option("--speed", speed, "playback speed (1 = real time)")->check(ldv::cli::finite_positive(1e4));
+  cmd->add_option("--start-delay", start_delay_s, "seconds between creating the ptys and the first byte")
+      ->check(ldv::cli::finite_range(0, 3600));
   cmd->callback([] {
     require_free_link_path("--imu-link", imu_link);
     require_free_link_path("--gnss-link", gnss_link);

@@ -25,12 +25,13 @@
 #include "common/formats/kfgins_files.hpp"
 #include "common/io/input_error.hpp"
 #include "common/io/output_file.hpp"
-#include "common/logging.hpp"
 #include "common/io/text_table.hpp"
+#include "common/logging.hpp"
 #include "estimator/run/alignment_options_from.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "services/fusion/log_replay.hpp"
 #include "toolbox/assess/nav_inputs.hpp"
+#include "tools/ldv/cli_checks.hpp"
 #include "tools/ldv/command_registry.hpp"
 #include "tools/ldv/nav_input_options.hpp"
 #include "tools/ldv/nav_outputs.hpp"
@@ -305,16 +306,23 @@ void add_nav_options(CLI::App* c, const std::shared_ptr<NavArgs>& args) {
       "--lcm-log", args->lcm_log,
       "replay an LCM log (IMU + GNSS_SOLUTION, and WHEEL_SPEED with --aid odometer) through the fusion service's "
       "navigation session");
-  c->add_option("--history", args->history_s, "with --lcm-log: how late a GNSS fix may arrive [s] (as the live service)");
+  c->add_option("--history", args->history_s,
+                "with --lcm-log: how late a GNSS fix may arrive [s] (as the live service)")
+      ->check(ldv::cli::finite_range(0, 3600));
   c->add_flag("--host-clock-imu", args->host_clock_imu,
               "with --lcm-log: also use IMU samples stamped from the host clock (status bit 0), as fusion's "
               "host_clock_imu does for an IMU without PPS");
-  c->add_option("--align-wait", args->align_wait_s, "with --lcm-log: host seconds the alignment waits for GNSS");
+  c->add_option("--align-wait", args->align_wait_s, "with --lcm-log: host seconds the alignment waits for GNSS")
+      ->check(ldv::cli::finite_range(0, 86400));
   c->add_option("--out", args->out, "output .nav (default <outputpath>/KF_GINS_Navresult.nav)");
-  c->add_option("--week", args->week, "GPS week written in the .nav (default ldv.week, the .pos week, or 0)");
-  c->add_option("--std-rate", args->std_rate_hz, "rate of the _std.txt rows [Hz] (0: every IMU sample)");
+  c->add_option("--week", args->week, "GPS week written in the .nav (default ldv.week, the .pos week, or 0)")
+      ->check(ldv::cli::finite_range(0, 9999));
+  c->add_option("--std-rate", args->std_rate_hz, "rate of the _std.txt rows [Hz] (0: every IMU sample)")
+      ->check(ldv::cli::finite_range(0, 1e4));
   c->add_option("--align-speed", args->align_speed_mps,
-                "alignment without a given state: GNSS speed [m/s] above which the course gives the heading (default ldv.align_speed_mps, else 2)");
+                "alignment without a given state: GNSS speed [m/s] above which the course gives the heading (default "
+                "ldv.align_speed_mps, else 2)")
+      ->check(ldv::cli::finite_range(0, 1000));
   c->add_option("--align-hypotheses", args->align_hypotheses,
                 "unknown mounting (hand-held): try N body headings 360/N apart against the GNSS track (default "
                 "ldv.align_hypotheses, else 1: body x along the motion; 12 for a hand-held IMU)")

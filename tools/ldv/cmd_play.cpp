@@ -7,11 +7,12 @@
 #include <thread>
 
 #include "common/bus/bus.hpp"
-#include "common/time/gps_time.hpp"
 #include "common/bus/message_conversions.hpp"
 #include "common/formats/gnss_solution_checks.hpp"
 #include "common/formats/kfgins_files.hpp"
 #include "common/io/input_error.hpp"
+#include "common/time/gps_time.hpp"
+#include "tools/ldv/cli_checks.hpp"
 #include "tools/ldv/command_registry.hpp"
 
 namespace ldv::cli {
@@ -24,10 +25,13 @@ void add_play_command(CLI::App& app) {
   static int week = -1;
   cmd->add_option("dir", dir, "directory with imu.txt, gnss.txt (and truth.nav for the GPS week)")->required();
   cmd->add_option("--url", url, "LCM URL (default: LCM's default)");
-  cmd->add_option("--speed", speed, "playback speed factor (1 = real time)")->check(CLI::PositiveNumber);
-  cmd->add_option("--gnss-latency", latency_s, "GNSS solution latency after its epoch [s]")->check(CLI::NonNegativeNumber);
-  cmd->add_option("--duration", duration_s, "stop after this many seconds of data (0 = all)");
-  cmd->add_option("--week", week, "GPS week of the files' first second (default: from truth.nav)");
+  cmd->add_option("--speed", speed, "playback speed factor (1 = real time)")->check(ldv::cli::finite_positive(1e4));
+  cmd->add_option("--gnss-latency", latency_s, "GNSS solution latency after its epoch [s]")
+      ->check(ldv::cli::finite_range(0, 60));
+  cmd->add_option("--duration", duration_s, "stop after this many seconds of data (0 = all)")
+      ->check(ldv::cli::finite_range(0, 1e7));
+  cmd->add_option("--week", week, "GPS week of the files' first second (default: from truth.nav)")
+      ->check(ldv::cli::finite_range(0, 9999));
   cmd->callback([] {
     namespace fs = std::filesystem;
     const auto imu = read_kfgins_imu((fs::path(dir) / "imu.txt").string());

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "toolbox/assess/report_sections.hpp"
+#include "tools/ldv/cli_checks.hpp"
 #include "tools/ldv/command_registry.hpp"
 
 namespace {
@@ -32,7 +33,8 @@ void add_report_command(CLI::App& app) {
                 "ldv allan --json runs of one record with growing --terms (e.g. QNBK then QNBKR), in order: the "
                 "stochastic model loop (the misfit per decade names the missing term, adding it makes it fall)");
   c->add_option("--diagnose-json", a->in.diagnose_json, "ldv diagnose --json output");
-  c->add_option("--settle", a->in.settle_s, "skip the first seconds in error statistics and plots [s]");
+  c->add_option("--settle", a->in.settle_s, "skip the first seconds in error statistics and plots [s]")
+      ->check(ldv::cli::finite_range(0, 1e7));
   c->add_option("--title", a->in.title, "page title");
   c->add_option("--out", a->out, "output directory (index.html and PNGs)")->required();
   c->callback([a] {

@@ -1,6 +1,8 @@
 // `ldv sim`: simulate a vehicle run (truth, IMU, GNSS, device streams) into a directory.
+#include <cstdint>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 #include <memory>
 
 #include "common/io/input_error.hpp"
@@ -8,6 +10,7 @@
 #include "sim/imu_grade.hpp"
 #include "sim/scenario.hpp"
 #include "sim/simulator.hpp"
+#include "tools/ldv/cli_checks.hpp"
 #include "tools/ldv/command_registry.hpp"
 
 namespace {
@@ -116,8 +119,10 @@ void run(SimOptions& o, const CLI::App& cmd) {
   if (!o.outages_text.empty()) o.req.outages = parse_outages(o.outages_text);
   if (!o.lever_arm.empty()) {
     if (o.lever_arm.size() != 3) throw InputError("--lever-arm", 0, "expected 3 values x,y,z [m]");
-    o.req.effects.push_back("lever_arm=" + std::to_string(o.lever_arm[0]) + "," + std::to_string(o.lever_arm[1]) + "," +
-                            std::to_string(o.lever_arm[2]));
+    const std::string spec = "lever_arm=" + std::to_string(o.lever_arm[0]) + "," + std::to_string(o.lever_arm[1]) +
+                             "," + std::to_string(o.lever_arm[2]);
+    sim::parse_effect(spec, "--lever-arm");  // its bounds, named as the user gave them
+    o.req.effects.push_back(spec);
   }
   o.req.with_noise = !o.no_noise;
   set_vehicle_options(o, cmd);
@@ -148,55 +153,92 @@ void add_sim_command(CLI::App& app) {
                   "hg1900-typical | 3dm-gx2-typical (datasheet stand-ins with typical in-run terms), or a grade YAML "
                   "file in the paper's units (sim/README.md; --print-grade NAME shows the keys)")
       ->capture_default_str();
-  cmd->add_option("--seed", r.seed, "random seed (same seed, same data)")->capture_default_str();
-  cmd->add_option("--duration", r.duration_s, "run length [s]")->capture_default_str();
+  cmd->add_option("--seed", r.seed, "random seed (same seed, same data)")
+      ->capture_default_str()
+      ->check(CLI::Range(std::uint64_t{0}, std::numeric_limits<std::uint64_t>::max()));
+  cmd->add_option("--duration", r.duration_s, "run length [s]")
+      ->capture_default_str()
+      ->check(ldv::cli::checked_where_used());
   cmd->add_option("--scenario", r.scenario, "built-in scenario name or YAML file (--list-scenarios)")->capture_default_str();
-  cmd->add_option("--imu-rate", r.imu_rate_hz, "IMU rate [Hz]")->capture_default_str();
-  cmd->add_option("--gnss-rate", r.gnss_rate_hz, "GNSS rate [Hz]")->capture_default_str();
+  cmd->add_option("--imu-rate", r.imu_rate_hz, "IMU rate [Hz]")
+      ->capture_default_str()
+      ->check(ldv::cli::checked_where_used());
+  cmd->add_option("--gnss-rate", r.gnss_rate_hz, "GNSS rate [Hz]")
+      ->capture_default_str()
+      ->check(ldv::cli::checked_where_used());
   cmd->add_option("--effect", r.effects, "inject an effect: NAME or NAME=v1,v2,v3 (engineering units, --list-effects); hidden unless declared");
   cmd->add_option("--declare", r.declared_effects, "inject an effect and also write it into kfgins.yaml (NAME or NAME=values)");
   cmd->add_option("--outages", opts->outages_text, "GNSS outages START:LENGTH,... [s from the run start]");
-  cmd->add_option("--lever-arm", opts->lever_arm, "shorthand for --effect lever_arm=x,y,z [m]")->delimiter(',')->expected(3);
+  cmd->add_option("--lever-arm", opts->lever_arm, "shorthand for --effect lever_arm=x,y,z [m]")
+      ->delimiter(',')
+      ->expected(3)
+      ->check(ldv::cli::checked_where_used());
   cmd->add_option("--gnss-mode", r.gnss_mode, "GNSS solution type: fixed | float | single")->capture_default_str();
   cmd->add_flag("--gnss-velocity", r.gnss_velocity, "write 13-column gnss.txt with velocity");
-  cmd->add_option("--gnss-latency", r.gnss_latency_s, "mean GNSS solution latency [s]")->capture_default_str();
-  cmd->add_option("--gps-week", r.gps_week, "GPS week of the run")->capture_default_str();
-  cmd->add_option("--start-sow", r.start_sow_s, "start time [s of GPS week]")->capture_default_str();
-  cmd->add_option("--osc-hz", r.oscillator_hz, "time-stamp unit counter frequency [Hz]")->capture_default_str();
-  cmd->add_option("--osc-ppm", r.oscillator_ppm, "counter frequency error [ppm]")->capture_default_str();
-  cmd->add_option("--leap-seconds", r.leap_seconds, "GPS - UTC [s] for NMEA times")->capture_default_str();
+  cmd->add_option("--gnss-latency", r.gnss_latency_s, "mean GNSS solution latency [s]")
+      ->capture_default_str()
+      ->check(ldv::cli::checked_where_used());
+  cmd->add_option("--gps-week", r.gps_week, "GPS week of the run")
+      ->capture_default_str()
+      ->check(ldv::cli::checked_where_used());
+  cmd->add_option("--start-sow", r.start_sow_s, "start time [s of GPS week]")
+      ->capture_default_str()
+      ->check(ldv::cli::checked_where_used());
+  cmd->add_option("--osc-hz", r.oscillator_hz, "time-stamp unit counter frequency [Hz]")
+      ->capture_default_str()
+      ->check(ldv::cli::checked_where_used());
+  cmd->add_option("--osc-ppm", r.oscillator_ppm, "counter frequency error [ppm]")
+      ->capture_default_str()
+      ->check(ldv::cli::checked_where_used());
+  cmd->add_option("--leap-seconds", r.leap_seconds, "GPS - UTC [s] for NMEA times")
+      ->capture_default_str()
+      ->check(ldv::cli::finite_range(0, 100));
   auto& v = r.vehicle;
   cmd->add_option("--realism", v.realism,
                   "none | vehicle: vibration, shocks, IMU latency, mounting, GNSS velocity lag and outliers, odometer, "
                   "datasheet.yaml (options given explicitly win)")
       ->capture_default_str();
   cmd->add_option("--vibration", opts->vibration,
-                  "vehicle vibration: installed white noise = FACTOR x the grade's ARW/VRW, plus engine harmonics");
+                  "vehicle vibration: installed white noise = FACTOR x the grade's ARW/VRW, plus engine harmonics")
+      ->check(ldv::cli::checked_where_used());
   cmd->add_option("--engine-vibration", opts->engine_vibration,
                   "engine harmonic amplitudes with --vibration: ACCEL_MPS2,GYRO_DPS (default 0.3,0.2)")
       ->delimiter(',')
-      ->expected(2);
-  cmd->add_option("--shocks", opts->shocks, "road bumps per km travelled");
-  cmd->add_option("--imu-latency", opts->imu_latency, "IMU time tags late by S [s] (tag = true time + S)");
+      ->expected(2)
+      ->check(ldv::cli::checked_where_used());
+  cmd->add_option("--shocks", opts->shocks, "road bumps per km travelled")->check(ldv::cli::checked_where_used());
+  cmd->add_option("--imu-latency", opts->imu_latency, "IMU time tags late by S [s] (tag = true time + S)")
+      ->check(ldv::cli::checked_where_used());
   cmd->add_option("--mounting", opts->mounting,
                   "IMU body in the vehicle: roll,pitch,yaw [deg], C_b_v = Rz(yaw) Ry(pitch) Rx(roll)")
       ->delimiter(',')
-      ->expected(3);
-  cmd->add_option("--gnss-velocity-lag", opts->gnss_velocity_lag, "GNSS velocity is the one at epoch - S [s]");
+      ->expected(3)
+      ->check(ldv::cli::checked_where_used());
+  cmd->add_option("--gnss-velocity-lag", opts->gnss_velocity_lag, "GNSS velocity is the one at epoch - S [s]")
+      ->check(ldv::cli::checked_where_used());
   cmd->add_option("--gnss-velocity-noise", opts->gnss_velocity_noise,
-                  "simulated GNSS velocity noise = FACTOR x the stated std (the stated std unchanged)");
-  cmd->add_option("--gnss-outliers", opts->gnss_outliers, "fraction of GNSS epochs with a 1-3 m position jump");
+                  "simulated GNSS velocity noise = FACTOR x the stated std (the stated std unchanged)")
+      ->check(ldv::cli::checked_where_used());
+  cmd->add_option("--gnss-outliers", opts->gnss_outliers, "fraction of GNSS epochs with a 1-3 m position jump")
+      ->check(ldv::cli::checked_where_used());
   cmd->add_flag("--odometer", v.odometer, "write odo.txt: sow, forward speed [m/s]");
-  cmd->add_option("--odo-rate", v.odo_rate_hz, "odometer rate [Hz]")->capture_default_str();
+  cmd->add_option("--odo-rate", v.odo_rate_hz, "odometer rate [Hz]")
+      ->capture_default_str()
+      ->check(ldv::cli::checked_where_used());
   cmd->add_option("--odo-lever-arm", opts->odo_lever_arm,
                   "odometer point (rear-axle centre) minus IMU, x,y,z [m] in IMU body axes")
       ->delimiter(',')
-      ->expected(3);
-  cmd->add_option("--odo-noise", v.odo_noise_mps, "odometer white noise std [m/s]")->capture_default_str();
+      ->expected(3)
+      ->check(ldv::cli::checked_where_used());
+  cmd->add_option("--odo-noise", v.odo_noise_mps, "odometer white noise std [m/s]")
+      ->capture_default_str()
+      ->check(ldv::cli::checked_where_used());
   cmd->add_option("--odo-quantum", v.odo_quantum_mps, "odometer speed resolution [m/s] (0: none)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(ldv::cli::checked_where_used());
   cmd->add_option("--wheel-slip", v.wheel_slip_deg_per_mps2,
-                  "side slip on turns [deg per m/s^2 of lateral acceleration], drifting to the outside");
+                  "side slip on turns [deg per m/s^2 of lateral acceleration], drifting to the outside")
+      ->check(ldv::cli::checked_where_used());
   cmd->add_flag("--no-noise", opts->no_noise, "no random noise (sensor and GNSS); deterministic errors stay");
   cmd->add_option("--out", opts->out_dir, "output directory (written all-or-nothing)");
   cmd->add_flag("--quiet", opts->quiet, "no progress on stderr");

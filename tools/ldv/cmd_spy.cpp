@@ -22,6 +22,7 @@
 #include "common/bus/lcm_log_reader.hpp"
 #include "common/bus/message_conversions.hpp"
 #include "services/fusion/nav_message.hpp"
+#include "tools/ldv/cli_checks.hpp"
 #include "tools/ldv/command_registry.hpp"
 
 namespace ldv::cli {
@@ -160,7 +161,8 @@ void add_spy_command(CLI::App& app) {
   static bool once = false;
   cmd->add_option("--url", url,
                   "LCM URL (default: LCM_DEFAULT_URL or LCM's default); file://LOG reads a recorded log to its end");
-  cmd->add_option("--duration", duration_s, "stop after this many seconds (0: until Ctrl-C)");
+  cmd->add_option("--duration", duration_s, "stop after this many seconds (0: until Ctrl-C)")
+      ->check(ldv::cli::finite_range(0, 1e7));
   cmd->add_flag("--once", once, "print one table at the end instead of refreshing the screen");
   cmd->callback([] {
     std::map<std::string, ChannelView> channels;

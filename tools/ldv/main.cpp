@@ -40,6 +40,15 @@ int main(int argc, char** argv) {
   ldv::cli::add_all_commands(app);
   ldv::cli::refuse_non_finite_numbers(app);
   // `ldv help [COMMAND]`: what `--help` prints (a user's first try; it said "A subcommand is required").
+  if (argc == 3 && std::string(argv[1]) == "help" && std::string(argv[2]) == "--unbounded-numbers") {
+    const auto unbounded = ldv::cli::unbounded_number_options(app);
+    for (const auto& name : unbounded) std::printf("%s\n", name.c_str());
+    return unbounded.empty() ? 0 : kExitFailed;
+  }
+  if (argc == 3 && std::string(argv[1]) == "help" && std::string(argv[2]) == "--checked-where-used") {
+    for (const auto& name : ldv::cli::checked_where_used_options(app)) std::printf("%s\n", name.c_str());
+    return 0;
+  }
   if (argc >= 2 && std::string(argv[1]) == "help") {
     if (argc == 2) {
       std::fputs(app.help().c_str(), stdout);

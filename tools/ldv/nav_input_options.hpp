@@ -5,6 +5,7 @@
 
 #include "estimator/update/updater.hpp"
 #include "toolbox/assess/nav_inputs.hpp"
+#include "tools/ldv/cli_checks.hpp"
 
 namespace ldv::cli {
 
@@ -15,10 +16,13 @@ inline void add_nav_input_options(CLI::App* c, assess::NavInputArgs& in, bool co
   c->add_option("--imu", in.imu, "IMU increments (KF-GINS imu.txt), overrides the config");
   c->add_option("--imu-csv", in.imu_csv, "IMU rates as CSV ax,ay,az[g],gx,gy,gz[deg/s],counter[ms] with an RTKLIB tag file");
   c->add_option("--imu-tag", in.imu_tag, "RTKLIB time-tag file of --imu-csv (default FILE.tag)");
-  c->add_option("--csv-axes", in.csv_axes, "device axes to front-right-down, e.g. 1 -2 -3 (default 1 2 3)")->expected(3);
+  c->add_option("--csv-axes", in.csv_axes, "device axes to front-right-down, e.g. 1 -2 -3 (default 1 2 3)")
+      ->expected(3)
+      ->check(ldv::cli::finite_range(-3, 3));
   c->add_option("--imu-time-shift", in.imu_time_shift_s,
                 "added to every IMU time stamp [s]: a known IMU latency (default ldv.imu_time_shift_s; the time_offset "
-                "effect estimates an unknown one)");
+                "effect estimates an unknown one)")
+      ->check(ldv::cli::finite_range(-604800, 604800));
   c->add_option("--calibration", in.calibration,
                 "IMU calibration file of `ldv calib static`, applied to every increment in the device axes "
                 "(default ldv.calibration; toolbox/calib/README.md)");
@@ -26,14 +30,18 @@ inline void add_nav_input_options(CLI::App* c, assess::NavInputArgs& in, bool co
   c->add_option("--pos", in.rtklib_pos, "GNSS solutions from an RTKLIB .pos file, overrides the config");
   c->add_option("--pos-height-offset", in.pos_height_offset_m,
                 "added to the .pos heights [m]: the geoid separation N when the file gives height above MSL "
-                "(default ldv.pos_height_offset_m; 21.387 for walk_0827)");
+                "(default ldv.pos_height_offset_m; 21.387 for walk_0827)")
+      ->check(ldv::cli::finite_range(-1e4, 1e4));
   c->add_option("--float-std-min", in.float_std_min_m,
                 "minimum position std [m] of .pos solutions that are not RTK-fixed (default ldv.float_std_min_m, "
-                "0: as reported)");
+                "0: as reported)")
+      ->check(ldv::cli::finite_range(0, 1e4));
   c->add_option("--model", in.model, "ins15 | kfgins21 | geoldv51 (default ldv.model, else kfgins21)");
   c->add_option("--add", in.add, "add an effect block (repeatable)");
   c->add_option("--drop", in.drop, "drop an effect block (repeatable)");
-  c->add_option("--lever", in.lever, "antenna lever arm x y z [m], body front-right-down")->expected(3);
+  c->add_option("--lever", in.lever, "antenna lever arm x y z [m], body front-right-down")
+      ->expected(3)
+      ->check(ldv::cli::finite_range(-100, 100));
   c->add_option("--imu-latency", in.imu_latency,
                 "auto: estimate how late the IMU stamps are from the turns and take it out when significant; off "
                 "(default ldv.imu_latency, else auto; off with --imu-time-shift or --kfgins-compatible)")
