@@ -57,6 +57,11 @@ Geodetic offset_ned(const Geodetic& from, const Vec3& dr_n) {
 }
 
 Vec3 ned_between(const Geodetic& from, const Geodetic& to) {
+  // Near a pole a metre east is a large longitude and two points may lie on opposite meridians (a vehicle
+  // driving over the pole): there the vector goes through ECEF (same to first order elsewhere, and slower).
+  constexpr double kPolarCap_rad = 89.0 * kDegToRad;
+  if (std::abs(from.lat_rad) > kPolarCap_rad || std::abs(to.lat_rad) > kPolarCap_rad)
+    return C_n_e(from).transpose() * (ecef_from_geodetic(to) - ecef_from_geodetic(from));
   const Radii r = radii(from.lat_rad);
   return {(to.lat_rad - from.lat_rad) * (r.meridian_m + from.h_m),
           wrap_pi(to.lon_rad - from.lon_rad) * (r.prime_vertical_m + from.h_m) * std::cos(from.lat_rad),

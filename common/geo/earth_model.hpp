@@ -28,7 +28,8 @@ Vec3 omega_en_n(double lat_rad, double h_m, const Vec3& v_n);
 Mat3 dr_n_per_dlla(const Geodetic& at);
 // Position displaced by a small NED offset dr_n [m] (first order, exact enough for < 1 km).
 Geodetic offset_ned(const Geodetic& from, const Vec3& dr_n);
-// NED vector [m] from `from` to `to` (first order with the radii at `from`; use for < 1 km).
+// NED vector [m] from `from` to `to` (first order with the radii at `from`; use for < 1 km; above 89 deg of
+// latitude the straight line through ECEF, valid across the pole).
 Vec3 ned_between(const Geodetic& from, const Geodetic& to);
 
 // Exact conversions through ECEF (GeographicLib), for tests and long baselines.

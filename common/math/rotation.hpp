@@ -14,6 +14,7 @@ using Mat3 = Eigen::Matrix3d;
 using Quat = Eigen::Quaterniond;
 
 constexpr double kPi = 3.14159265358979323846;
+constexpr double kHalfPi = kPi / 2.0;
 constexpr double kDegToRad = kPi / 180.0;
 constexpr double kRadToDeg = 180.0 / kPi;
 

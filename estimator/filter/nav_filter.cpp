@@ -338,7 +338,11 @@ void NavFilter::propagate_sample(const ImuIncrement& raw_part) {
   const double dt = st.dt_s;
   c_.acc_T_s += dt;
   c_.acc_dv_n += st.dv_sf_n_mps;
-  if (m_ == 0) return;
+  if (m_ > 0) accumulate_effect_inputs(st, dt);
+  if (st.crossed_pole) turn_error_frame_over_pole();
+}
+
+void NavFilter::accumulate_effect_inputs(const MechanizationStep& st, double dt) {
   LinearizationPoint lp;
   lp.C_b_n = c_.nav.C_b_n();
   lp.omega_ib_b_rad_s = st.omega_ib_b_rad_s;
@@ -353,6 +357,16 @@ void NavFilter::propagate_sample(const ImuIncrement& raw_part) {
     const int o = b.offset - kNavDim;
     if (g) c_.acc_B.block(kAtt, o, 3, b.dim).noalias() -= Cdt * J_gyro_[i];
     if (a) c_.acc_B.block(kVel, o, 3, b.dim).noalias() += Cdt * J_accel_[i];
+  }
+}
+
+// Over a pole the n frame turned 180 deg about down: the north and east parts of the position, velocity and attitude
+// errors change sign (the covariance accumulated so far is brought in first, in the frame it was built in).
+void NavFilter::turn_error_frame_over_pole() {
+  flush_covariance();
+  for (const int i : {kPos, kPos + 1, kVel, kVel + 1, kAtt, kAtt + 1}) {
+    c_.P.row(i) *= -1.0;
+    c_.P.col(i) *= -1.0;
   }
 }
 

@@ -167,6 +167,8 @@ class NavFilter {
   void coast_over_imu_gap(double hole_start_s, double t_end_s);
   void adapt_imu_noise(const InnovationRecord& rec);
   void flush_covariance();
+  void accumulate_effect_inputs(const MechanizationStep& st, double dt);  // the effects' B over one step
+  void turn_error_frame_over_pole();
   void run_aids();
   void apply_event(const Event& event);
   // Brings P to the state's epoch and applies the first queued reading there.

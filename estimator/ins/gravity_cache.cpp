@@ -1,5 +1,6 @@
 #include "estimator/ins/gravity_cache.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/geo/earth_model.hpp"
@@ -8,9 +9,12 @@ namespace ldv::est {
 
 void GravityCache::expand_at(double lat_rad, double h_m) {
   // Central differences over 10 m / 1e-5 rad: the model is smooth, truncation error ~1e-12 m/s^2.
+  // Within 1e-5 rad (64 m) of a pole the difference stays on the Earth's side: the model refuses a latitude beyond
+  // 90 deg with NaN (issue 46: a vehicle 55 m from the North Pole navigated on NaN).
   const double dlat = 1e-5, dh = 10.0;
+  const double lat_hi = std::min(lat_rad + dlat, kHalfPi), lat_lo = std::max(lat_rad - dlat, -kHalfPi);
   g0_ = earth::gravity_n(lat_rad, h_m);
-  dg_dlat_ = (earth::gravity_n(lat_rad + dlat, h_m) - earth::gravity_n(lat_rad - dlat, h_m)) / (2.0 * dlat);
+  dg_dlat_ = (earth::gravity_n(lat_hi, h_m) - earth::gravity_n(lat_lo, h_m)) / (lat_hi - lat_lo);
   dg_dh_ = (earth::gravity_n(lat_rad, h_m + dh) - earth::gravity_n(lat_rad, h_m - dh)) / (2.0 * dh);
   lat0_rad_ = lat_rad;
   h0_m_ = h_m;

@@ -15,6 +15,9 @@ struct MechanizationStep {
   Vec3 omega_ib_b_rad_s = Vec3::Zero();  // mean angular rate over the step
   Vec3 f_b_mps2 = Vec3::Zero();          // mean specific force over the step
   Vec3 a_n_mps2 = Vec3::Zero();          // mean acceleration (dv_n/dt) over the step
+  // The step went over a pole: the state is now on the far meridian (longitude + 180 deg) and its n frame is the
+  // old one turned 180 deg about down (north and east negated), so an error state in n must turn with it.
+  bool crossed_pole = false;
 };
 
 class Mechanization {

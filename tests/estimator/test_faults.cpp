@@ -399,5 +399,58 @@ TEST(Faults, TheGradesMovingBiasTermsReachGeoLdv51) {
   }
 }
 
+// Issue 46, item 1: a vehicle 55 m from the North Pole got a file of one time (every sample a state reset: NaN
+// from the gravity model beyond 90 deg). Standing there, and driving north over the pole and down the far
+// meridian, the filter tracks the fixes with times that only increase, no reset and no rejected fix.
+TEST(Faults, GivenAVehicleStandingAtThePoleOrDrivingOverIt_ThenTheFilterTracksWithoutResets) {
+  for (const double speed_mps : {0.0, 10.0}) {
+    // truth: a level vehicle heading north along its meridian from 89.9995 deg (55.5 m short of the pole)
+    NavState truth;
+    truth.t_s = 100.0;
+    truth.pos = {89.9995 * kDegToRad, 30.0 * kDegToRad, 50.0};
+    truth.v_n_mps = Vec3(speed_mps, 0.0, 0.0);
+    Mechanization truth_mech;
+    truth_mech.reset(truth);
+    NavFilter f(FilterOptions{});
+    NavStd std0;
+    std0.pos_ned_m = Vec3::Constant(0.02);
+    std0.vel_n_mps = Vec3::Constant(0.01);
+    std0.att_rad = Vec3::Constant(0.01 * kDegToRad);
+    f.initialize(truth, std0);
+    constexpr double kDt_s = 0.005;
+    double last_t = truth.t_s, worst_m = 0.0;
+    int crossings = 0;
+    for (int k = 1; k <= 4000; ++k) {  // 20 s: 200 m, over the pole at 5.6 s
+      ImuIncrement inc;
+      inc.t_s = truth.t_s + kDt_s;
+      inc.dt_s = kDt_s;
+      const Mat3 C_n_b = truth.C_b_n().transpose();
+      const Geodetic& p = truth.pos;
+      const Vec3 w_ie = earth::omega_ie_n(p.lat_rad), w_en = earth::omega_en_n(p.lat_rad, p.h_m, truth.v_n_mps);
+      inc.dtheta_b_rad = C_n_b * (w_ie + w_en) * kDt_s;
+      inc.dvel_b_mps = C_n_b * ((2.0 * w_ie + w_en).cross(truth.v_n_mps) - earth::gravity_n(p.lat_rad, p.h_m)) * kDt_s;
+      crossings += truth_mech.step(truth, inc).crossed_pole;
+      f.add_imu(inc);
+      ASSERT_GT(f.state().t_s, last_t) << "time went back or stood at sample " << k;
+      last_t = f.state().t_s;
+      if (k % 40 == 0) {  // 5 Hz fixes at the truth
+        GnssFix fix;
+        fix.t_s = truth.t_s;
+        fix.pos = truth.pos;
+        fix.pos_std_ned_m = Vec3::Constant(0.02);
+        f.add_gnss(fix);
+      }
+      worst_m =
+          std::max(worst_m, (earth::ecef_from_geodetic(truth.pos) - earth::ecef_from_geodetic(f.state().pos)).norm());
+    }
+    EXPECT_EQ(crossings, speed_mps > 0 ? 1 : 0);
+    EXPECT_EQ(f.faults().state_resets, 0) << speed_mps;
+    EXPECT_EQ(f.faults().covariance_resets, 0) << speed_mps;
+    EXPECT_EQ(f.faults().gate_rejections, 0) << speed_mps;
+    EXPECT_LT(worst_m, 0.1) << speed_mps;
+    EXPECT_NEAR(f.state().v_n_mps.x(), -speed_mps, 0.05) << "heading south down the far meridian";
+  }
+}
+
 }  // namespace
 }  // namespace ldv::est

@@ -89,3 +89,44 @@ TEST(FreeInertial, GivenADriveEastAcrossTheAntimeridian_ThenLongitudeWrapsAndThe
   EXPECT_NEAR(moved.x(), 0.0, 5.0);
 }
 }  // namespace ldv::est
+
+namespace ldv::est {
+// Issue 46, item 1: at 89.9995 deg (55 m from the North Pole) ldv nav wrote a file of one time (the gravity
+// gradient was taken beyond 90 deg: NaN). Driving north over the pole, the track goes on down the far meridian:
+// 200 m in 10 s at 20 m/s from 55.5 m short of the pole ends 144.5 m past it, at longitude + 180 deg, heading south.
+TEST(FreeInertial, GivenADriveNorthOverThePole_ThenItContinuesDownTheFarMeridian) {
+  const double lat0 = 89.9995 * kDegToRad, lon0 = 10.0 * kDegToRad, h = 10.0, speed = 20.0;
+  NavState s;
+  s.t_s = 1000.0;
+  s.pos = {lat0, lon0, h};
+  s.v_n_mps = Vec3(speed, 0.0, 0.0);  // level, heading north: body = n
+  const earth::Radii r0 = earth::radii(lat0);
+  const double to_pole_m = (kHalfPi - lat0) * (r0.meridian_m + h);
+  Mechanization mech;
+  mech.reset(s);
+  int crossings = 0;
+  for (int k = 1; k <= 1000; ++k) {
+    ImuIncrement inc;
+    inc.t_s = 1000.0 + 0.01 * k;
+    inc.dt_s = 0.01;
+    // what a level vehicle driving straight along its meridian senses: the n frame's rotation, gravity, Coriolis,
+    // in body axes (body = n before the pole, n turned 180 deg about down after it)
+    const Mat3 C_n_b = s.C_b_n().transpose();
+    const Vec3 rate_n = earth::omega_ie_n(s.pos.lat_rad) + earth::omega_en_n(s.pos.lat_rad, h, s.v_n_mps);
+    inc.dtheta_b_rad = C_n_b * rate_n * 0.01;
+    const Vec3 coriolis_n =
+        (2.0 * earth::omega_ie_n(s.pos.lat_rad) + earth::omega_en_n(s.pos.lat_rad, h, s.v_n_mps)).cross(s.v_n_mps);
+    inc.dvel_b_mps = C_n_b * (coriolis_n - earth::gravity_n(s.pos.lat_rad, h)) * 0.01;
+    crossings += mech.step(s, inc).crossed_pole;
+    ASSERT_TRUE(std::isfinite(s.pos.lat_rad) && std::isfinite(s.pos.lon_rad) && s.v_n_mps.allFinite());
+    ASSERT_LE(s.pos.lat_rad, kHalfPi);
+  }
+  EXPECT_EQ(crossings, 1);
+  const double past_pole_m = (kHalfPi - s.pos.lat_rad) * (earth::radii(s.pos.lat_rad).meridian_m + h);
+  EXPECT_NEAR(past_pole_m, 200.0 - to_pole_m, 0.5);
+  EXPECT_NEAR(std::remainder(s.pos.lon_rad - (lon0 + kPi), 2 * kPi), 0.0, 1e-3);
+  EXPECT_NEAR(s.v_n_mps.x(), -speed, 0.05) << "heading south on the far side";
+  EXPECT_NEAR(s.v_n_mps.y(), 0.0, 0.05);
+  EXPECT_NEAR(s.pos.h_m, h, 0.05);
+}
+}  // namespace ldv::est
