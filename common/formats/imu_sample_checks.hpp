@@ -22,4 +22,8 @@ constexpr double kMaxImuInterval_s = 1.0;
 // nullopt when an IMU could have sensed it.
 std::optional<std::string> imu_increment_implausibility(const Vec3& dtheta_b_rad, const Vec3& dvel_b_mps, double dt_s);
 
+// The rates alone, for an increment whose interval may be a gap (a file's line after missing lines): an
+// increment over a long interval is a gap to bridge, not an implausible sample.
+std::optional<std::string> imu_rate_implausibility(const Vec3& dtheta_b_rad, const Vec3& dvel_b_mps, double dt_s);
+
 }  // namespace ldv

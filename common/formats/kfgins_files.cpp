@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "common/formats/gnss_solution_checks.hpp"
+#include "common/formats/imu_sample_checks.hpp"
 #include "common/formats/imu_time_gaps.hpp"
 #include "common/io/text_table.hpp"
 #include "common/logging.hpp"
@@ -105,16 +106,18 @@ std::vector<ImuIncrement> read_kfgins_imu(const std::string& path, ImuReadReport
                           std::to_string(n));
       continue;
     }
-    // No IMU sample holds this (100 rad, 1e4 m/s in one interval): a corrupted field, not a measurement.
-    constexpr double kMaxDtheta_rad = 100.0, kMaxDvel_mps = 1e4, kMaxTime_s = 1e10;  // and 300 years of time
+    constexpr double kMaxTime_s = 1e10;  // 300 years
     if (std::abs(v[0]) > kMaxTime_s) {
       rep.dropped.add(DropReason::kOutOfRange, path, line, "column 1: time beyond 1e10 s");
       continue;
     }
-    if (std::max({std::abs(v[1]), std::abs(v[2]), std::abs(v[3])}) > kMaxDtheta_rad ||
-        std::max({std::abs(v[4]), std::abs(v[5]), std::abs(v[6])}) > kMaxDvel_mps) {
-      rep.dropped.add(DropReason::kOutOfRange, path, line,
-                      "an increment beyond any IMU (|dtheta| <= 100 rad, |dvel| <= 1e4 m/s per sample)");
+    // What no IMU senses, judged as on the bus (imu_sample_checks.hpp) over the interval to the line before (the
+    // first line, or one whose time repeats or does not follow, judged below: over the longest interval a sample
+    // spans).
+    const double interval_s =
+        !rows.empty() && v[0] - rows.back().s.t_s >= kMinImuInterval_s ? v[0] - rows.back().s.t_s : kMaxImuInterval_s;
+    if (const auto why = imu_rate_implausibility(Vec3(v[1], v[2], v[3]), Vec3(v[4], v[5], v[6]), interval_s)) {
+      rep.dropped.add(DropReason::kOutOfRange, path, line, "an increment beyond any IMU: " + *why);
       continue;
     }
     if (drop_if_cut(lines, text, previous_decimals, rep.dropped, path, line)) continue;

@@ -12,6 +12,7 @@
 #include <functional>
 #include <limits>
 
+#include "common/formats/imu_sample_checks.hpp"
 #include "common/formats/kfgins_config.hpp"
 #include "common/formats/kfgins_files.hpp"
 #include "common/formats/rtklib_time_tag.hpp"
@@ -179,6 +180,32 @@ TEST(KfGinsGnssPlausibility, GivenRowsTheRtklibReaderRefuses_ThenGnssTxtDropsThe
     EXPECT_GT(f.pos.h_m, -1000.0);
     EXPECT_LT(f.pos.h_m, 1e5);
   }
+}
+
+// Issue 46 (4): the KF-GINS IMU reader had its own per-line caps (100 rad, 1e4 m/s per line), so 2 rad in 5 ms
+// (400 rad/s) or 50 m/s in 5 ms (10000 m/s^2) passed while the bus refused them. One set of checks: the rates of
+// imu_sample_checks over the line's interval; a normal increment after a gap is kept (a gap, not a bad sample).
+TEST(KfGinsImuPlausibility, GivenIncrementsTheBusRefuses_ThenImuTxtDropsThemByLineAndKeepsTheGap) {
+  std::string text;
+  for (int i = 0; i < 200; ++i) {
+    const double t = 100.0 + 0.005 * i + (i >= 150 ? 2.0 : 0.0);  // a 2 s gap before line 151
+    char row[160];
+    double dtheta = 1e-4, dvel = -0.049;
+    if (i == 40) dtheta = 2.0;  // 400 rad/s: beyond any gyro, under the old 100 rad cap
+    if (i == 80) dvel = 50.0;   // 10000 m/s^2: beyond any accelerometer, under the old 1e4 m/s cap
+    std::snprintf(row, sizeof row, "%.3f %.6e 0 0 0 0 %.6e\n", t, dtheta, dvel);
+    text += row;
+  }
+  const std::string p = write_temp("imu_implausible.txt", text);
+  ImuReadReport rep;
+  const auto imu = read_kfgins_imu(p, &rep);
+  EXPECT_EQ(imu.size(), 198u);
+  EXPECT_EQ(rep.dropped[DropReason::kOutOfRange], 2);
+  const std::string& first = rep.dropped.first[static_cast<int>(DropReason::kOutOfRange)];
+  EXPECT_NE(first.find("imu_implausible.txt:41:"), std::string::npos) << first;
+  EXPECT_NE(first.find("angular rate"), std::string::npos) << first;
+  EXPECT_EQ(rep.long_gaps.size(), 1u) << "the gap stays a gap";
+  for (const ImuIncrement& s : imu) EXPECT_FALSE(imu_increment_implausibility(s.dtheta_b_rad, s.dvel_b_mps, 0.005));
 }
 
 // Defect 4: a 1e6 s hole was integrated as one increment and reported as "gaps 0".
