@@ -4,9 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <sstream>
 
+#include "common/io/input_error.hpp"
 #include "tests/diagnose/trial.hpp"
 #include "toolbox/diagnose/report_json.hpp"
+#include "toolbox/diagnose/report_text.hpp"
 
 namespace ldv::diag {
 namespace {
@@ -117,4 +120,52 @@ TEST(DiagnoseSim, TimeOffsetAndLeverArmAreOneGroupOnCircles) {
   EXPECT_FALSE(top.separate_by.empty());
 }
 
+}  // namespace ldv::diag
+
+namespace ldv::diag {
+// Issue 46 (6), results on no data: a drive whose GNSS never overlapped the IMU (0 measurement epochs) was reported
+// as "the model is consistent with the data", and a truth that ended early silently dropped the comparison.
+TEST(DiagnoseSim, GivenNoMeasurementEpochs_ThenTheDiagnosisIsRefusedSayingWhereTheDataLie) {
+  testing::SimCase c;
+  c.duration_s = 120.0;
+  c.scenario = "circle";  // never stops: no standstill either
+  const sim::SimResult r = testing::simulate(c);
+  DiagnoseInputs in = testing::inputs(r);
+  for (GnssFix& f : in.gnss) f.t_s += 10000.0;  // another time scale
+  in.cfg.gnss_path = "gnss_late.txt";
+  try {
+    diagnose(in, testing::options(r, "kfgins21"));
+    FAIL() << "a diagnosis on no measurement";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("gnss_late.txt"), std::string::npos) << what;
+    EXPECT_NE(what.find("no measurement reached the filter"), std::string::npos) << what;
+  }
+}
+
+TEST(DiagnoseSim, GivenATruthThatEndsEarly_ThenTheReportSaysWhatItCovered) {
+  testing::SimCase c;
+  c.duration_s = 120.0;
+  const sim::SimResult r = testing::simulate(c);
+  DiagnoseInputs in = testing::inputs(r);
+  DiagnoseOptions o = testing::options(r, "kfgins21");
+  o.max_added = 0;
+  const double t0 = in.truth.front().sow_s;
+  std::erase_if(in.truth, [&](const NavRecord& n) { return n.sow_s > t0 + 30.0; });  // before the 60 s skip ends
+  const Diagnosis none = diagnose(in, o);
+  EXPECT_TRUE(none.truth_before.given);
+  EXPECT_FALSE(none.truth_before.available);
+  EXPECT_NE(none.truth_before.coverage_note.find("covers 0 of"), std::string::npos) << none.truth_before.coverage_note;
+  std::ostringstream text;
+  print_report(text, none);
+  EXPECT_NE(text.str().find("not compared: the truth"), std::string::npos) << text.str();
+
+  in = testing::inputs(r);
+  std::erase_if(in.truth, [&](const NavRecord& n) { return n.sow_s > t0 + 90.0; });  // half the compared span
+  const Diagnosis part = diagnose(in, o);
+  EXPECT_TRUE(part.truth_before.available);
+  EXPECT_GT(part.truth_before.compared_epochs, 0);
+  EXPECT_LT(part.truth_before.compared_epochs, part.truth_before.run_epochs);
+  EXPECT_FALSE(part.truth_before.coverage_note.empty());
+}
 }  // namespace ldv::diag

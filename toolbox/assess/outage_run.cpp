@@ -47,6 +47,7 @@ class DriftTracker {
     if (const auto d = evaluate()) {
       r_.end_drift = *d;
       r_.end_std = last_std_;
+      r_.end_measured = true;
     }
     r_.t_end_s = last_.t_s;
     return std::move(r_);
@@ -162,20 +163,41 @@ OutageRun run_outages(const std::vector<ImuIncrement>& imu, const std::vector<Gn
   OutageRun run;
   run.reference = truth.empty() ? "uncut solution" : "truth";
   run.threads = o.threads;  // the threads that worked are counted by parallel_for
-  const double t_data_end = cfg.end_time_s > 0 ? std::min(cfg.end_time_s, imu.back().t_s) : imu.back().t_s;
+  double t_data_end = cfg.end_time_s > 0 ? std::min(cfg.end_time_s, imu.back().t_s) : imu.back().t_s;
   // Convergence counts from the filter's start (a run that aligns while moving starts late).
   const double t_init = est::initialisation_epoch(imu, gnss, cfg, est::alignment_options_from(fo));
+  // Against truth, outages lie where the truth is (issue 46: a truth that ended before them gave 0.000 m).
+  const double t_truth_start = truth.empty() ? -1e300 : truth.t_begin_s(),
+               t_truth_end = truth.empty() ? 1e300 : truth.t_end_s();
+  t_data_end = std::min(t_data_end, t_truth_end);
   std::vector<GnssFix> after_init;
   for (const GnssFix& f : gnss)
     if (f.t_s >= t_init) after_init.push_back(f);
   if (after_init.empty()) throw std::invalid_argument("outage: no GNSS after the filter's initialisation");
-  const std::vector<OutageWindow> plan = plan_outages(after_init, o.lengths_s, t_data_end, o.plan);
-  if (plan.empty()) {
+  // The convergence before an outage needs GNSS before it, so fixes before the truth still count; only the
+  // outage's start is held within the truth.
+  if (!truth.empty() && (t_truth_end <= after_init.front().t_s || t_truth_start >= t_data_end)) {
     char buf[320];
     std::snprintf(buf, sizeof buf,
-                  "outage: no outage fits: %.0f s of GNSS after the initialisation, outages start %.0f s later (--converge) when "
-                  "faster than %.1f m/s (--min-speed), %.0f s apart (--recovery); lower these for a short or slow run",
-                  after_init.back().t_s - after_init.front().t_s, o.plan.converge_s, o.plan.min_speed_mps, o.plan.recovery_s);
+                  "outage: the truth (%.3f to %.3f s) does not overlap the run's GNSS (%.3f to %.3f s): no outage "
+                  "can be measured against it",
+                  t_truth_start, t_truth_end, after_init.front().t_s, after_init.back().t_s);
+    throw std::invalid_argument(buf);
+  }
+  std::vector<OutageWindow> plan = plan_outages(after_init, o.lengths_s, t_data_end, o.plan);
+  std::erase_if(plan, [&](const OutageWindow& w) { return w.start_s < t_truth_start; });
+  if (plan.empty()) {
+    char buf[480];
+    std::snprintf(
+        buf, sizeof buf,
+        "outage: no outage fits: %.0f s of GNSS after the initialisation, outages start %.0f s later (--converge) when "
+        "faster than %.1f m/s (--min-speed), %.0f s apart (--recovery), and end where the data's GNSS is back%s; "
+        "lower these for a short or slow run",
+        after_init.back().t_s - after_init.front().t_s, o.plan.converge_s, o.plan.min_speed_mps, o.plan.recovery_s,
+        truth.empty()
+            ? ""
+            : (", within the truth (" + std::to_string(t_truth_start) + " to " + std::to_string(t_truth_end) + " s)")
+                  .c_str());
     throw std::invalid_argument(buf);
   }
   {
@@ -246,6 +268,12 @@ OutageRun run_outages(const std::vector<ImuIncrement>& imu, const std::vector<Gn
   std::stable_sort(results.begin(), results.end(), [](const OutageResult& a, const OutageResult& b) {
     return a.window.length_s != b.window.length_s ? a.window.length_s < b.window.length_s : a.window.start_s < b.window.start_s;
   });
+  // No result on no data: an outage whose end the reference does not reach is named, not reported as 0 m.
+  for (const OutageResult& r : results)
+    if (!r.end_measured) run.unmeasured.push_back(r.window);
+  std::erase_if(results, [](const OutageResult& r) { return !r.end_measured; });
+  if (results.empty())
+    throw std::invalid_argument("outage: the " + run.reference + " has no sample at the end of any planned outage");
   run.outages = std::move(results);
   return run;
 }

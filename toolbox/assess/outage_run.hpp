@@ -48,7 +48,8 @@ struct DriftPoint {
 struct OutageResult {
   OutageWindow window;
   double t_end_s = 0.0;               // IMU epoch the end drift is taken at (last one <= start + length)
-  NavDifference end_drift;            // at t_end_s
+  NavDifference end_drift;            // at t_end_s (when end_measured)
+  bool end_measured = false;          // the reference had a sample at t_end_s
   est::NavStd end_std;                // the outage filter's 1-sigma at t_end_s (att: phi, NED)
   std::array<double, 9> max_abs{};    // max over the outage of |component| (solution_comparison.hpp order)
   double max_horizontal_m = 0.0;      // max over the outage of the horizontal position drift
@@ -60,6 +61,7 @@ struct OutageResult {
 struct OutageRun {
   std::string reference;  // "truth" or "uncut solution"
   std::vector<OutageResult> outages;              // sorted by length, then start
+  std::vector<OutageWindow> unmeasured;           // planned, but the reference had no sample at their end
   double uncut_run_s = 0.0, outages_run_s = 0.0;  // wall time
   long imu_samples = 0;
   int threads = 1;

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/io/input_error.hpp"
 #include "estimator/calibrate/installed_imu_noise.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "toolbox/diagnose/filter_run.hpp"
@@ -120,6 +121,26 @@ void add_self_calibration_findings(Diagnosis& d) {
 
 }  // namespace
 
+namespace {
+// No result on no data (issue 46: 0 measurement epochs were reported as "the model is consistent with the data"):
+// the diagnosis refuses, saying where the measurements and the IMU lie in time.
+[[noreturn]] void throw_no_measurements(const DiagnoseInputs& in) {
+  char b[400];
+  const double imu0 = in.imu.empty() ? NAN : in.imu.front().t_s, imu1 = in.imu.empty() ? NAN : in.imu.back().t_s;
+  if (in.gnss.empty())
+    std::snprintf(b, sizeof b,
+                  "no measurement reached the filter (no GNSS fix; IMU %.3f to %.3f s, no standstill): "
+                  "nothing to diagnose",
+                  imu0, imu1);
+  else
+    std::snprintf(b, sizeof b,
+                  "no measurement reached the filter: %zu GNSS fixes from %.3f to %.3f s, the IMU from "
+                  "%.3f to %.3f s (do their times overlap, on one time scale?): nothing to diagnose",
+                  in.gnss.size(), in.gnss.front().t_s, in.gnss.back().t_s, imu0, imu1);
+  throw InputError(in.cfg.gnss_path.empty() ? std::string("GNSS") : in.cfg.gnss_path, 0, b);
+}
+}  // namespace
+
 Diagnosis diagnose(const DiagnoseInputs& in, const DiagnoseOptions& opt) {
   if (opt.max_added < 0) throw std::invalid_argument("diagnose: max_added must be >= 0, got " + std::to_string(opt.max_added));
   const double cpu0 = process_cpu_seconds();
@@ -144,6 +165,7 @@ Diagnosis diagnose(const DiagnoseInputs& in, const DiagnoseOptions& opt) {
       current_run = run_filter(in, current, &st.candidates);
       ++d.filter_runs;
     }
+    if (step == 0 && current_run.records.empty()) throw_no_measurements(in);
     const std::vector<Segment> labels = classify_epochs(current_run.epochs);
     st.check = check_model(current_run, labels);
     st.screening = screen(st.candidates, current_run.records, record_segments(current_run, labels), opt.screening);

@@ -78,8 +78,11 @@ std::string check_json(const ModelCheck& mc) {
 }
 
 std::string truth_json(const TruthError& t) {
-  if (!t.available) return "null";
-  return "{\"rms_pos_3d_m\": " + num(t.rms_pos_3d_m) + ", \"rms_horizontal_m\": " + num(t.rms_horizontal_m) +
+  if (!t.available)
+    return t.given ? "{\"compared_epochs\": 0, \"coverage_note\": " + str(t.coverage_note) + "}" : "null";
+  return "{\"compared_epochs\": " + std::to_string(t.compared_epochs) +
+         ", \"run_epochs\": " + std::to_string(t.run_epochs) + ", \"coverage_note\": " + str(t.coverage_note) +
+         ", \"rms_pos_3d_m\": " + num(t.rms_pos_3d_m) + ", \"rms_horizontal_m\": " + num(t.rms_horizontal_m) +
          ", \"rms_vertical_m\": " + num(t.rms_vertical_m) + ", \"max_horizontal_m\": " + num(t.max_horizontal_m) +
          ", \"rms_yaw_deg\": " + num(t.rms_yaw_deg) + "}";
 }

@@ -209,8 +209,14 @@ void print_report(std::ostream& out, const Diagnosis& d) {
     out << "\n4. Rerun with it\n";
     print_check(out, d.check_after);
   }
-  if (d.truth_before.available) {
+  if (d.truth_before.given) {
     out << "\n   Against truth\n";
+    const TruthError& t = d.truth_before;
+    if (!t.available)
+      out << "  not compared: " << (t.coverage_note.empty() ? "no epoch after the first seconds" : t.coverage_note)
+          << "\n";
+    else if (!t.coverage_note.empty())
+      out << "  only part compared: " << t.coverage_note << "\n";
     print_truth(out, "before:", d.truth_before);
     if (!d.add.empty()) print_truth(out, "after: ", d.truth_after);
   }

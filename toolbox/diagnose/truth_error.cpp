@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "common/geo/earth_model.hpp"
 #include "common/math/rotation.hpp"
@@ -12,6 +13,7 @@ namespace ldv::diag {
 TruthError truth_error(const FilterRun& run, const std::vector<Segment>& labels, const std::vector<NavRecord>& truth,
                        double skip_s) {
   TruthError te;
+  te.given = !truth.empty();
   if (truth.empty() || run.epochs.empty()) return te;
   const double t0 = run.epochs.front().t_s + skip_s;
   double s3 = 0.0, sh = 0.0, sv = 0.0, syaw = 0.0;
@@ -23,6 +25,7 @@ TruthError truth_error(const FilterRun& run, const std::vector<Segment>& labels,
   const assess::NavSeries truth_series = assess::NavSeries::from_records(truth);
   for (size_t i = 0; i < run.epochs.size(); ++i) {
     const EpochSample& e = run.epochs[i];
+    if (e.t_s >= t0) ++te.run_epochs;
     const std::optional<assess::NavSample> tr = truth_series.at(e.t_s);
     if (!tr) continue;
     const Vec3 d = earth::ned_between(tr->pos, e.pos);
@@ -30,6 +33,7 @@ TruthError truth_error(const FilterRun& run, const std::vector<Segment>& labels,
     te.pos_err_ned_m.push_back(d);
     if (e.t_s < t0) continue;
     ++n;
+    ++te.compared_epochs;
     s3 += d.squaredNorm();
     sh += d.head<2>().squaredNorm();
     sv += d.z() * d.z();
@@ -39,6 +43,16 @@ TruthError truth_error(const FilterRun& run, const std::vector<Segment>& labels,
     const int s = static_cast<int>(labels[i]);
     seg_sum[s] += d.squaredNorm();
     ++seg_n[s];
+  }
+  // No result on no data, and no silent part (issue 46): say what the truth covered.
+  if (te.compared_epochs < te.run_epochs) {
+    char b[300];
+    std::snprintf(b, sizeof b,
+                  "the truth (%.3f to %.3f s) covers %d of the run's %d epochs from %.3f to %.3f s "
+                  "(the first %.0f s left out)",
+                  truth_series.t_begin_s(), truth_series.t_end_s(), te.compared_epochs, te.run_epochs, t0,
+                  run.epochs.back().t_s, skip_s);
+    te.coverage_note = b;
   }
   if (n == 0) return te;
   te.available = true;

@@ -42,6 +42,9 @@ void run_outage(OutageArgs& a) {
   assess::print_outage_table(stdout, run, summary);
   std::printf("\n%zu outages on %d threads: uncut run %.1f s, outages %.1f s (%ld IMU samples)\n", run.outages.size(),
               run.threads, run.uncut_run_s, run.outages_run_s, run.imu_samples);
+  for (const assess::OutageWindow& w : run.unmeasured)
+    std::printf("not measured: the %.0f s outage from %.3f s (the %s has no sample at its end)\n", w.length_s,
+                w.start_s, run.reference.c_str());
   if (!a.json.empty()) {
     std::ofstream f(a.json);
     if (!f) throw InputError(a.json, 0, "cannot open file for writing");
