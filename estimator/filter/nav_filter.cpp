@@ -179,10 +179,10 @@ void NavFilter::add_imu(const ImuIncrement& input) {
   c_.status &= ~(kStatusImuRejected | kStatusImuGap | kStatusCovarianceReset | kStatusStateReset | kStatusLateDropped |
                  kStatusMeasurementRejected);
   if (!c_.initialized) return;
-  if (kept_history_s() > 0.0) {
-    imu_history_.push_back(raw);
-    while (!imu_history_.empty() && imu_history_.front().t_s < raw.t_s - kept_history_s()) imu_history_.pop_front();
-  }
+  // The IMU since the last healthy state is always kept: a state reset brings that state forward with it.
+  const double imu_kept_s = std::max(kept_history_s(), 2.0 * kHealthPeriod_s);
+  imu_history_.push_back(raw);
+  while (!imu_history_.empty() && imu_history_.front().t_s < raw.t_s - imu_kept_s) imu_history_.pop_front();
   process_imu(raw);
   if (kept_history_s() > 0.0) take_snapshot();
   settle_suspect_fix();
@@ -300,8 +300,14 @@ void NavFilter::process_imu(const ImuIncrement& raw) {
   if (!usable(c_.nav)) {
     // Restore the last healthy state and open its covariance: never continue with NaN or a diverged state.
     const std::uint32_t bits = c_.status;
+    const double t_now = c_.nav.t_s;
     c_ = last_good_;
     c_.P *= 4.0;
+    // ... brought forward to this sample by the IMU alone: the state's time only increases (issue 46: the
+    // restored state's older time went into the .nav again, 8303 rows stepping back).
+    for (const ImuIncrement& raw : imu_history_)
+      if (raw.t_s > c_.nav.t_s + kSplitTolerance_s && raw.t_s <= t_now + kSplitTolerance_s) propagate_sample(raw);
+    flush_covariance();
     c_.status = bits | kStatusStateReset;
     ++faults_.state_resets;
     announce_restart();

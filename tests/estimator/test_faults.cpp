@@ -452,5 +452,22 @@ TEST(Faults, GivenAVehicleStandingAtThePoleOrDrivingOverIt_ThenTheFilterTracksWi
   }
 }
 
+// Issue 46 (6): a state reset restored the last healthy state with its older time, so the .nav went back
+// (8303 rows on a drive whose fixes sat near -1000 m) and the smoother lost rows. The restored state is brought
+// forward to the current sample by the IMU: the state's time is each sample's time, resets or not.
+TEST(Faults, GivenRepeatedStateResets_ThenTheStateTimeFollowsEverySample) {
+  NavState s0 = start();
+  s0.pos.h_m = -999.9;
+  s0.v_n_mps = Vec3(0.0, 0.0, 0.5);  // sinking through the lowest plausible height within 0.2 s
+  NavFilter f(FilterOptions{});
+  f.initialize(s0, NavStd{});
+  double t = s0.t_s;
+  for (int k = 0; k < 1000; ++k) {
+    f.add_imu(static_increment(t += 0.005, 0.005));
+    ASSERT_NEAR(f.state().t_s, t, 1e-9) << "sample " << k << ", " << f.faults().state_resets << " resets so far";
+  }
+  EXPECT_GT(f.faults().state_resets, 0) << "the case resets the state";
+}
+
 }  // namespace
 }  // namespace ldv::est

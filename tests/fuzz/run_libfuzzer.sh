@@ -4,8 +4,11 @@
 # (tests/fuzz/corpus/<target>, read only: new inputs go to $2/corpus-new/<target>). A crash, a sanitizer report or
 # a broken property (tests/fuzz/fuzz_support.hpp) fails the run; the input is left in $2/findings/.
 # Add an input that found something to the kept corpus once it is fixed: the default suite replays it.
+# With a 4th argument `--merge`, the inputs of this run that reach code the kept corpus does not are merged into
+# it (libFuzzer -merge=1: the grown corpus minimised), to be committed.
+# scripts/test.sh (and so CI) runs it for 15 s a target on every submission.
 set -euo pipefail
-src="$1" build="$2" seconds="${3:-30}"
+src="$1" build="$2" seconds="${3:-30}" merge="${4:-}"
 if ! command -v clang++ >/dev/null || ! ls /usr/lib/llvm-*/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a >/dev/null 2>&1; then
   export DEBIAN_FRONTEND=noninteractive
   apt-get update -qq && apt-get install -y -qq --no-install-recommends clang libclang-rt-14-dev
@@ -31,6 +34,12 @@ for t in "${targets[@]}"; do
     status=1
   else
     grep -E "stat::number_of_executed_units|cov:" "$build/$t.log" | tail -2
+    if [[ "$merge" == --merge ]]; then
+      before=$(ls "$src/tests/fuzz/corpus/$t" | wc -l)
+      "$build/bin/$t" -merge=1 -timeout=10 -rss_limit_mb=2048 -max_len=65536 "$src/tests/fuzz/corpus/$t" \
+        "$build/corpus-new/$t" 2>"$build/$t.merge.log"
+      echo "   merged: $before -> $(ls "$src/tests/fuzz/corpus/$t" | wc -l) kept inputs"
+    fi
   fi
 done
 exit $status

@@ -597,3 +597,35 @@ TEST(CliFaults, GivenANulInsideAConfiguredPath_ThenNavRefusesNamingTheKeyAndLine
 }
 
 }  // namespace ldv
+
+namespace ldv::test {
+namespace {
+// Issue 46 (6): a time_offset estimate that steps back (--add time_offset on a drive whose IMU runs 100 ms late,
+// the latency not taken out first) stamped .nav rows before the row written last: 7 rows went back. A file's
+// times only increase; the epochs that would go back are counted and said.
+TEST(CliFaults, GivenATimeOffsetEstimateThatStepsBack_ThenTheNavTimesStillOnlyIncrease) {
+  const fs::path dir = temp_dir("nav_time_offset_steps");
+  const auto sim = run_ldv({"sim", "--grade", "hg1700-typical", "--duration", "300", "--gnss-rate", "5",
+                            "--imu-latency", "0.1", "--out", (dir / "sim").string(), "--quiet"},
+                           120.0);
+  ASSERT_EQ(sim.exit_code, 0) << sim.output;
+  const fs::path nav = dir / "nav.nav";
+  const auto r = run_ldv({"nav", "--kfgins-config", (dir / "sim" / "kfgins.yaml").string(), "--add", "time_offset",
+                          "--imu-latency", "off", "--out", nav.string()},
+                         120.0);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(nav);
+  double week = 0, t = 0, last_t = -1e300;
+  std::string rest;
+  long rows = 0, back = 0;
+  while (in >> week >> t && std::getline(in, rest)) {
+    back += !(t > last_t);
+    last_t = t;
+    ++rows;
+  }
+  EXPECT_GT(rows, 59000);
+  EXPECT_EQ(back, 0) << "rows whose time did not increase";
+  if (rows < 60000) EXPECT_NE(r.output.find("epochs not written"), std::string::npos) << r.output;
+}
+}  // namespace
+}  // namespace ldv::test

@@ -157,6 +157,15 @@ std::unique_ptr<est::NavFilter> check_model(const NavArgs& a, const est::FilterO
   }
 }
 
+// Rows not written because their time was not after the last one (a time_offset estimate stepping back).
+void warn_rows_not_advancing(const cli::NavOutputs& out, const std::string& path, bool quiet) {
+  if (out.rows_not_advancing() > 0 && !quiet)
+    std::fprintf(stderr,
+                 "ldv nav: WARNING: %ld epochs not written to %s: their time (IMU time + the time_offset estimate) was "
+                 "not after the row before (the estimate stepped back)\n",
+                 out.rows_not_advancing(), path.c_str());
+}
+
 void run_lcm_log(const NavArgs& a, const KfGinsConfig& cfg, est::FilterOptions opt, const est::AlignmentOptions& ao) {
   const auto t_begin = std::chrono::steady_clock::now();
   opt.history_s = a.history_s;  // as the live service: late fixes re-process the IMU history
@@ -185,6 +194,7 @@ void run_lcm_log(const NavArgs& a, const KfGinsConfig& cfg, est::FilterOptions o
                                                std::to_string(sum.imu_messages) + " IMU and " +
                                                std::to_string(sum.gnss_messages) + " GNSS messages)");
   out->close();
+  warn_rows_not_advancing(*out, nav_path, a.quiet);
   out.reset();
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
   if (!a.quiet) {
@@ -279,6 +289,7 @@ void run_nav(const NavArgs& a) {
 
   const est::RunSummary sum = est::run_navigation(in.imu, in.gnss, in.config, *filter, cb, &ao, &in.other_observations);
   out.close();
+  warn_rows_not_advancing(out, forward_path, a.quiet);
   const double forward_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
   if (recorder) {
     pass = "ldv smooth: backward";

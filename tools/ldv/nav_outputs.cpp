@@ -104,7 +104,15 @@ NavOutputs::NavOutputs(const std::string& nav_path, const est::NavFilter& f, dou
 
 void NavOutputs::epoch(const est::NavFilter& f, int week) {
   const est::NavState& s = f.state();
-  nav_.write(nav_record(s, week, f.gnss_time_s()));
+  // A file's times only increase (issue 46): a time_offset estimate stepping back by more than a sample interval
+  // would stamp a row before the one written last; such rows are counted, not written.
+  const double t_gnss_s = f.gnss_time_s();
+  if (!(t_gnss_s > last_row_t_s_)) {
+    ++rows_not_advancing_;
+    return;
+  }
+  last_row_t_s_ = t_gnss_s;
+  nav_.write(nav_record(s, week, t_gnss_s));
   if (s.t_s + 1e-9 < next_std_t_) return;
   next_std_t_ = s.t_s + std_period_;
   const est::NavStd nav = f.nav_std();  // the attitude's with the gyros' Q, which no state holds

@@ -47,12 +47,16 @@ class NavOutputs {
   void epoch(const est::NavFilter& f, int week);
   void innovation(const est::InnovationRecord& r);
   void close();  // a full disk is an error here, not a truncated file and exit 0
+  // Epochs whose time was not after the row written last (not written: the file's times only increase).
+  long rows_not_advancing() const { return rows_not_advancing_; }
 
  private:
   NavWriter nav_;
   TextOut std_, innov_;
   double std_period_;
   double next_std_t_ = -1e300;
+  double last_row_t_s_ = -1e300;
+  long rows_not_advancing_ = 0;
 };
 
 // The start of FILE_separation.txt's header (how ldv nav recognises an earlier ldv smooth's file).
