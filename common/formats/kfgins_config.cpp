@@ -103,9 +103,12 @@ struct Reader {
 }  // namespace
 
 std::string resolve_data_path(const std::string& p, const std::string& config_path) {
-  if (p.empty() || fs::path(p).is_absolute() || fs::exists(p)) return p;
+  // Without throwing: a path the system cannot even look up (too long, a NUL) stays as given, and opening it
+  // names it (a fuzz finding: "filesystem error: status: File name too long" named no file).
+  std::error_code ec;
+  if (p.empty() || fs::path(p).is_absolute() || fs::exists(p, ec)) return p;
   const fs::path beside = fs::path(config_path).parent_path() / p;
-  if (fs::exists(beside)) return beside.lexically_normal().string();
+  if (fs::exists(beside, ec)) return beside.lexically_normal().string();
   return p;
 }
 

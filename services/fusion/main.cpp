@@ -79,7 +79,7 @@ int main(int argc, char** argv) {
         engine.set_warm_start(*w);
         spdlog::info("fusion: warm start available from {} (saved {:.1f} s ago)", cfg.state_file,
                      ldv::host_time_s() - w->saved_host_time_s);
-      } else if (std::filesystem::exists(cfg.state_file)) {
+      } else if (std::error_code ec; std::filesystem::exists(cfg.state_file, ec)) {
         spdlog::warn("fusion: warm-state file {} not used ({}): aligning instead", cfg.state_file, refused_why);
       }
     }

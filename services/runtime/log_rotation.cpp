@@ -104,7 +104,8 @@ void RotatingLogWriter::open_next() {
   for (;; ++next) {  // never reuse a name, whatever else lies in the directory
     std::snprintf(index, sizeof index, "%06lld", static_cast<long long>(next));
     path = (fs::path(dir_) / (stem_ + "." + index + "." + utc_stamp(now) + ext_)).string();
-    if (!fs::exists(path)) break;
+    std::error_code ec;  // a name the system cannot look up is not taken: the open below names it
+    if (!fs::exists(path, ec)) break;
   }
   auto log = std::make_unique<lcm::LogFile>(path, "w");
   if (!log->good()) throw std::runtime_error("cannot open " + path + " for writing");

@@ -576,3 +576,23 @@ TEST(TaggedCsvWeekEnd, GivenSamplesAcrossTheEndOfAGpsWeek_ThenTimesGoOnPastTheWe
   EXPECT_LT(imu.front().t_s, kSecondsPerWeek);
   EXPECT_GT(imu.back().t_s, kSecondsPerWeek) << "seconds of the first week, on past its end";
 }
+
+namespace ldv {
+// A libFuzzer finding (issue 46, the fuzzer in CI; corpus/fuzz_yaml_configs/finding_path_too_long): a data path
+// longer than the system can look up threw "filesystem error: status: File name too long", naming no file. The
+// path stays as given, and reading it names it.
+TEST(KfGinsConfigSchema, GivenADataPathTooLongToLookUp_ThenTheConfigLoadsAndReadingItNamesThePath) {
+  const std::string long_name(5000, 'x');
+  const std::string p =
+      write_temp("cfg_long_path_" + std::to_string(::getpid()) + ".yaml",
+                 "imupath: " + long_name +
+                     "\ngnsspath: gnss.txt\nimudatalen: 7\n"
+                     "imunoise:\n  arw: [0.2, 0.2, 0.2]\n  vrw: [0.4, 0.4, 0.4]\n  gbstd: [50, 50, 50]\n"
+                     "  abstd: [250, 250, 250]\n  corrtime: 1.0\n");
+  KfGinsConfig c;
+  EXPECT_NO_THROW(c = load_kfgins_config(p));
+  EXPECT_EQ(c.imu_path, long_name);
+  const std::string e = error_of([&] { read_kfgins_imu(c.imu_path); });
+  EXPECT_NE(e.find(long_name.substr(0, 100)), std::string::npos) << e.substr(0, 200);
+}
+}  // namespace ldv
