@@ -97,6 +97,10 @@ struct FilterOptions {
   // noisier as installed (vibration) than configured; the scale is reported (NavFilter::imu_noise_scale).
   // Off with ldv.kfgins_compatible and in `ldv diagnose` (whose model check judges the configured model).
   bool adapt_imu_noise = true;
+  // With adapt_imu_noise: the GNSS position variance and the IMU noise each get their own factor, told apart by
+  // the innovations' whiteness (estimator/filter/noise_adaptation.hpp), instead of one factor on the IMU that
+  // every NIS excess went to (issue 47).
+  bool split_noise_adaptation = false;
   // With adapt_imu_noise: run_navigation first measures the noise as installed over a standstill in the data
   // and makes it the floor (installed_imu_noise.hpp). Off where the adaptation itself is the measurement
   // (the IMU-latency decision compares how much noise the filter needs with and without a lag).

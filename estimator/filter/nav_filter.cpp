@@ -1,14 +1,14 @@
 #include "estimator/filter/nav_filter.hpp"
 
-#include "common/formats/gnss_solution_checks.hpp"
-
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string_view>
 #include <vector>
 
+#include "common/formats/gnss_solution_checks.hpp"
 #include "common/geo/earth_model.hpp"
 #include "common/math/chi_square.hpp"
 #include "estimator/filter/nav_error_dynamics.hpp"
@@ -631,7 +631,15 @@ NavFilter::RejectRun& NavFilter::reject_run(SensorName sensor) {
   return c_.reject_runs.back();
 }
 
-void NavFilter::apply_measurement(const Measurement& m) {
+void NavFilter::apply_measurement(const Measurement& given) {
+  // The GNSS position variance as adapted (split_noise_adaptation): the gate judges against it too.
+  const bool split = opt_.adapt_imu_noise && opt_.split_noise_adaptation && given.sensor == sensors::kGnssPosition;
+  std::optional<Measurement> rescaled;
+  if (split && c_.noise_adaptation.gnss_scale() != 1.0) {
+    rescaled = given;
+    rescaled->R *= c_.noise_adaptation.gnss_scale();
+  }
+  const Measurement& m = rescaled ? *rescaled : given;
   RejectRun& run = reject_run(m.sensor);
   if (run.last_y.size() != m.y.size()) run.last_y = Eigen::VectorXd::Zero(m.y.size());
   const double gate = gate_threshold(m.rows());
@@ -688,7 +696,10 @@ void NavFilter::apply_measurement(const Measurement& m) {
   const bool ok = kalman_update(c_.P, m, {gate, opt_.robust_update, force}, rec, dx_, want ? &K_ : nullptr);
   const bool beyond_gate = !force && rec.nis > gate;
   if (ok) correct(dx_);
-  if (opt_.adapt_imu_noise && m.sensor == sensors::kGnssPosition && !force) adapt_imu_noise(rec);
+  if (split && !force)
+    adapt_noise(rec, m.R);
+  else if (opt_.adapt_imu_noise && m.sensor == sensors::kGnssPosition && !force)
+    adapt_imu_noise(rec);
   if (ok && force) {
     c_.status |= kStatusGateResync;
     ++faults_.gate_resyncs;
@@ -744,6 +755,16 @@ void NavFilter::adapt_imu_noise(const InnovationRecord& rec) {
   c_.imu_noise_scale = std::clamp(c_.imu_noise_scale * std::exp(step), 1.0, kMaxImuNoiseScale);
 }
 
+void NavFilter::adapt_noise(const InnovationRecord& rec, const Eigen::MatrixXd& R_used) {
+  // The prediction's part of S (the robust update's S carries its R inflated by rec.noise_scale); the innovation
+  // capped at the gate, so that an outlier the robust update discounts moves the factors little.
+  const Eigen::MatrixXd A = rec.S - rec.noise_scale * R_used;
+  const double gate = gate_threshold(static_cast<int>(rec.innovation.size()));
+  const double cap = rec.nis > gate ? std::sqrt(gate / rec.nis) : 1.0;
+  c_.noise_adaptation.add_fix(c_.nav.t_s, A, R_used, rec.innovation * cap);
+  c_.imu_noise_scale = c_.noise_adaptation.imu_scale();
+}
+
 bool NavFilter::fill_unset_white_noise(const Vec3& arw_rad_per_sqrt_s, const Vec3& vrw_mps_per_sqrt_s) {
   bool filled = false;
   for (int axis = 0; axis < 3; ++axis) {
@@ -758,6 +779,7 @@ bool NavFilter::fill_unset_white_noise(const Vec3& arw_rad_per_sqrt_s, const Vec
 void NavFilter::set_imu_noise_floor(const ImuNoiseScale& psd_floor) {
   if (std::isfinite(psd_floor.gyro)) c_.imu_noise_floor.gyro = std::clamp(psd_floor.gyro, 1.0, kMaxImuNoiseScale);
   if (std::isfinite(psd_floor.accel)) c_.imu_noise_floor.accel = std::clamp(psd_floor.accel, 1.0, kMaxImuNoiseScale);
+  if (std::isfinite(psd_floor.gyro) || std::isfinite(psd_floor.accel)) c_.noise_adaptation.set_imu_noise_measured();
   reset_static_detector();
 }
 

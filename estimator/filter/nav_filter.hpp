@@ -22,6 +22,7 @@
 
 #include "common/formats/nav_types.hpp"
 #include "estimator/filter/imu_noise_scale.hpp"
+#include "estimator/filter/noise_adaptation.hpp"
 #include "estimator/filter/records.hpp"
 #include "estimator/filter/status.hpp"
 #include "estimator/ins/mechanization.hpp"
@@ -83,6 +84,10 @@ class NavFilter {
   const FaultCounters& faults() const { return faults_; }
   // The factor the NIS adaptation puts on top of the floor (FilterOptions::adapt_imu_noise; >= 1).
   double imu_noise_scale() const { return c_.imu_noise_scale; }
+  // The factor on the GNSS position variances the receiver states (FilterOptions::split_noise_adaptation; 1 without)
+  // and the estimator behind both factors (its whiteness check).
+  double gnss_noise_scale() const { return c_.noise_adaptation.gnss_scale(); }
+  const NoiseAdaptation& noise_adaptation() const { return c_.noise_adaptation; }
   // A white-noise density configured as 0 (a datasheet that prints none) takes the one given, axis by axis,
   // e.g. what a standstill in the data showed: the floor below is a factor and cannot raise a 0. Before
   // initialize (the static detector reads the densities there). Returns whether anything was filled.
@@ -153,6 +158,7 @@ class NavFilter {
     ImuNoiseScale imu_noise_floor;
     double standstill_f_scatter_mps2 = 0.0;  // set_standstill_f_scatter
     double imu_noise_scale = 1.0;
+    NoiseAdaptation noise_adaptation;  // FilterOptions::split_noise_adaptation: the GNSS and IMU factors
     std::deque<Event> applied;  // readings applied within the history horizon (what a snapshot contains)
     // The last GNSS position fix, if it was taken in at the edge of the gate (NIS above the 99 % quantile) or
     // right after a rejected one: the one to try without when the next fix is rejected (retract_suspect_fix).
@@ -166,6 +172,7 @@ class NavFilter {
   // uncertainty opens by what the hole's length so far allows, whichever pieces it is coasted in.
   void coast_over_imu_gap(double hole_start_s, double t_end_s);
   void adapt_imu_noise(const InnovationRecord& rec);
+  void adapt_noise(const InnovationRecord& rec, const Eigen::MatrixXd& R_used);  // split_noise_adaptation
   void flush_covariance();
   void accumulate_effect_inputs(const MechanizationStep& st, double dt);  // the effects' B over one step
   void turn_error_frame_over_pole();
@@ -174,7 +181,7 @@ class NavFilter {
   // Brings P to the state's epoch and applies the first queued reading there.
   void apply_next_pending();
   void enqueue(const Event& event);
-  void apply_measurement(const Measurement& m);
+  void apply_measurement(const Measurement& given);
   RejectRun& reject_run(SensorName sensor);
   void correct(const Eigen::VectorXd& dx);
   void rebuild_error_model();

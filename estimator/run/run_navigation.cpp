@@ -66,6 +66,7 @@ FilterOptions options_from_kfgins(const KfGinsConfig& cfg) {
   o.robust_update = !ldv_key<bool>(cfg, "kfgins_compatible", !o.robust_update);
   o.step_confirm_s = ldv_key<double>(cfg, "step_confirm_s", o.step_confirm_s);
   o.adapt_imu_noise = ldv_key<bool>(cfg, "adapt_imu_noise", o.robust_update && o.adapt_imu_noise);
+  o.split_noise_adaptation = ldv_key<bool>(cfg, "split_noise_adaptation", o.split_noise_adaptation);
   // The time_offset effect's prior mean [s] (GNSS tag minus IMU tag), e.g. from `ldv diagnose --write-config`.
   o.time_offset_init_s = ldv_key<double>(cfg, "time_offset_s", o.time_offset_init_s);
   o.zupt.enabled = ldv_key<bool>(cfg, "zupt", o.zupt.enabled);

@@ -100,6 +100,14 @@ void print_summary(const char* what, long imu_samples, double t0, double t1, lon
                  "  IMU noise as installed: gyro %.1fx, accel %.1fx the configured PSD at the end (%s; times %.2f adapted "
                  "to the GNSS position NIS; %ld fixes down-weighted by the robust update)\n",
                  run.gyro, run.accel, measured, f.imu_noise_scale(), ft.downweighted);
+    if (f.options().split_noise_adaptation) {
+      const est::NoiseAdaptation& na = f.noise_adaptation();
+      std::fprintf(stderr,
+                   "  GNSS noise: position variance times %.2f the stated (std times %.2f), estimated over %ld fixes "
+                   "apart from the IMU's; innovations' lag-1 correlation %.2f (white: within +-%.2f)\n",
+                   na.gnss_scale(), std::sqrt(na.gnss_scale()), na.fixes(), na.lag1_correlation(),
+                   3.0 / std::sqrt(std::max<double>(na.lag1_products(), 1.0)));
+    }
   }
 }
 
