@@ -635,9 +635,9 @@ void NavFilter::apply_measurement(const Measurement& given) {
   // The GNSS position variance as adapted (split_noise_adaptation): the gate judges against it too.
   const bool split = opt_.adapt_imu_noise && opt_.split_noise_adaptation && given.sensor == sensors::kGnssPosition;
   std::optional<Measurement> rescaled;
-  if (split && c_.noise_adaptation.gnss_scale() != 1.0) {
+  if (split && c_.noise_adaptation.gnss_scale(given.gnss_class) != 1.0) {
     rescaled = given;
-    rescaled->R *= c_.noise_adaptation.gnss_scale();
+    rescaled->R *= c_.noise_adaptation.gnss_scale(given.gnss_class);
   }
   const Measurement& m = rescaled ? *rescaled : given;
   RejectRun& run = reject_run(m.sensor);
@@ -697,7 +697,7 @@ void NavFilter::apply_measurement(const Measurement& given) {
   const bool beyond_gate = !force && rec.nis > gate;
   if (ok) correct(dx_);
   if (split && !force)
-    adapt_noise(rec, m.R);
+    adapt_noise(rec, m.R, m.gnss_class);
   else if (opt_.adapt_imu_noise && m.sensor == sensors::kGnssPosition && !force)
     adapt_imu_noise(rec);
   if (ok && force) {
@@ -755,13 +755,13 @@ void NavFilter::adapt_imu_noise(const InnovationRecord& rec) {
   c_.imu_noise_scale = std::clamp(c_.imu_noise_scale * std::exp(step), 1.0, kMaxImuNoiseScale);
 }
 
-void NavFilter::adapt_noise(const InnovationRecord& rec, const Eigen::MatrixXd& R_used) {
+void NavFilter::adapt_noise(const InnovationRecord& rec, const Eigen::MatrixXd& R_used, int gnss_class) {
   // The prediction's part of S (the robust update's S carries its R inflated by rec.noise_scale); the innovation
   // capped at the gate, so that an outlier the robust update discounts moves the factors little.
   const Eigen::MatrixXd A = rec.S - rec.noise_scale * R_used;
   const double gate = gate_threshold(static_cast<int>(rec.innovation.size()));
   const double cap = rec.nis > gate ? std::sqrt(gate / rec.nis) : 1.0;
-  c_.noise_adaptation.add_fix(c_.nav.t_s, A, R_used, rec.innovation * cap);
+  c_.noise_adaptation.add_fix(c_.nav.t_s, A, R_used, rec.innovation * cap, gnss_class);
   c_.imu_noise_scale = c_.noise_adaptation.imu_scale();
 }
 

@@ -86,7 +86,7 @@ class NavFilter {
   double imu_noise_scale() const { return c_.imu_noise_scale; }
   // The factor on the GNSS position variances the receiver states (FilterOptions::split_noise_adaptation; 1 without)
   // and the estimator behind both factors (its whiteness check).
-  double gnss_noise_scale() const { return c_.noise_adaptation.gnss_scale(); }
+  double gnss_noise_scale(int gnss_class = 0) const { return c_.noise_adaptation.gnss_scale(gnss_class); }
   const NoiseAdaptation& noise_adaptation() const { return c_.noise_adaptation; }
   // A white-noise density configured as 0 (a datasheet that prints none) takes the one given, axis by axis,
   // e.g. what a standstill in the data showed: the floor below is a factor and cannot raise a 0. Before
@@ -172,7 +172,8 @@ class NavFilter {
   // uncertainty opens by what the hole's length so far allows, whichever pieces it is coasted in.
   void coast_over_imu_gap(double hole_start_s, double t_end_s);
   void adapt_imu_noise(const InnovationRecord& rec);
-  void adapt_noise(const InnovationRecord& rec, const Eigen::MatrixXd& R_used);  // split_noise_adaptation
+  // split_noise_adaptation
+  void adapt_noise(const InnovationRecord& rec, const Eigen::MatrixXd& R_used, int gnss_class);
   void flush_covariance();
   void accumulate_effect_inputs(const MechanizationStep& st, double dt);  // the effects' B over one step
   void turn_error_frame_over_pole();

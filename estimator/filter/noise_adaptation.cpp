@@ -32,13 +32,20 @@ Score score(const Eigen::MatrixXd& W, const Eigen::VectorXd& y, const Eigen::Mat
 }
 }  // namespace
 
-void NoiseAdaptation::add_fix(double t_s, const Eigen::MatrixXd& A, const Eigen::MatrixXd& R,
-                              const Eigen::VectorXd& y) {
+const char* NoiseAdaptation::gnss_class_name(int gnss_class) {
+  static const char* const names[kGnssClasses] = {"fixed", "float", "single/DGPS"};
+  return gnss_class >= 0 && gnss_class < kGnssClasses ? names[gnss_class] : "?";
+}
+
+void NoiseAdaptation::add_fix(double t_s, const Eigen::MatrixXd& A, const Eigen::MatrixXd& R, const Eigen::VectorXd& y,
+                              int gnss_class) {
+  gnss_class = std::clamp(gnss_class, 0, kGnssClasses - 1);
   const Eigen::MatrixXd S = A + R;
   const Eigen::LLT<Eigen::MatrixXd> llt(S);
   if (llt.info() != Eigen::Success || !y.allFinite() || !A.allFinite() || !R.allFinite()) return;
   const Eigen::MatrixXd W = llt.solve(Eigen::MatrixXd::Identity(S.rows(), S.cols()));
-  const bool paired = fixes_ > 0 && last_.y.size() == y.size() && t_s - last_t_s_ <= kMaxPairGap_s;
+  const bool paired =
+      fixes_ > 0 && last_.y.size() == y.size() && t_s - last_t_s_ <= kMaxPairGap_s && last_.gnss_class == gnss_class;
   if (paired) {
     // Differences of consecutive innovations: a white sequence keeps its variance in them (E[dd'] = S + S_prev),
     // a correlated one (a filter that lags, a transient, a missing effect) loses it.
@@ -53,12 +60,19 @@ void NoiseAdaptation::add_fix(double t_s, const Eigen::MatrixXd& A, const Eigen:
       // the latter, white innovations leave alpha without a restoring force: a random walk held at its floor,
       // which drifts up.
       const Score b = score(W_d, d, R_d), a_all = score(W, y, A), a_white = score(W_d, d, A_d);
-      const Eigen::Vector2d g(a_all.g - std::max(a_white.g, 0.0), b.g);
+      const int ib = 1 + gnss_class;  // this class's beta; the other classes' keep their value
       const double keep = std::exp(-std::max(t_s - last_t_s_, 0.0) / kWindow_s);
-      information_ = keep * information_ + Eigen::Vector2d(a_all.information, b.information);
-      theta_ += (g - (1.0 - keep) * prior_precision_.cwiseProduct(theta_)).cwiseQuotient(information_ + prior_precision_);
+      information_ *= keep;
+      information_(0) += a_all.information;
+      information_(ib) += b.information;
+      const double g[2] = {a_all.g - std::max(a_white.g, 0.0), b.g};
+      const int index[2] = {0, ib};
+      for (int k = 0; k < 2; ++k) {
+        const int i = index[k];
+        theta_(i) += (g[k] - (1.0 - keep) * prior_precision_(i) * theta_(i)) / (information_(i) + prior_precision_(i));
+      }
       theta_(0) = std::clamp(theta_(0), 0.0, kMaxLnImu);
-      theta_(1) = std::clamp(theta_(1), kMinLnGnss, kMaxLnGnss);
+      theta_(ib) = std::clamp(theta_(ib), kMinLnGnss, kMaxLnGnss);
     }
   }
   share_sum_ += (W * A).trace() / static_cast<double>(S.rows());
@@ -70,9 +84,10 @@ void NoiseAdaptation::add_fix(double t_s, const Eigen::MatrixXd& A, const Eigen:
     products_ += white.size();
   }
   last_white_ = white;
-  last_ = {y, A, R};
+  last_ = {y, A, R, gnss_class};
   last_t_s_ = t_s;
   ++fixes_;
+  ++class_fixes_[gnss_class];
 }
 
 void NoiseAdaptation::set_imu_noise_measured() {
@@ -80,7 +95,9 @@ void NoiseAdaptation::set_imu_noise_measured() {
 }
 
 double NoiseAdaptation::imu_scale() const { return std::exp(theta_(0)); }
-double NoiseAdaptation::gnss_scale() const { return std::exp(theta_(1)); }
+double NoiseAdaptation::gnss_scale(int gnss_class) const {
+  return std::exp(theta_(1 + std::clamp(gnss_class, 0, kGnssClasses - 1)));
+}
 
 double NoiseAdaptation::lag1_correlation() const {
   return products_ > 0 && sum_xx_ > 0.0 && sum_yy_ > 0.0 ? sum_xy_ / std::sqrt(sum_xx_ * sum_yy_) : NAN;

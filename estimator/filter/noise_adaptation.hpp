@@ -17,10 +17,10 @@
 // A structured residual (a missing lever arm, lag or scale) is correlated and goes to alpha only as far as its
 // prior allows: what is left shows in the whiteness below, for ldv diagnose to name.
 //
-// Not wired into NavFilter yet (issue 47): the filter's FilterOptions::adapt_imu_noise still drives the one factor
-// on the IMU. Wiring it in (the GNSS position update's R times beta; alpha on top of the installed floor) and
-// validating it on the drives the issue names is the next step; here the estimator alone, against closed forms
-// (tests/estimator/test_noise_adaptation.cpp).
+// beta is kept per solution quality (fixed, float, other: single, DGPS, SBAS): a receiver's stated std is off by
+// its own factor in each, and a drive moves between them. Fixes of one class pair only with fixes of that class.
+// In NavFilter with FilterOptions::split_noise_adaptation (the GNSS position update's R times beta of its class;
+// alpha on top of the installed floor); tests/estimator/test_noise_adaptation.cpp checks it against closed forms.
 //
 // Also kept: the lag-1 correlation of the whitened innovations (L^-1 y, S = L L^T) between consecutive fixes. A
 // consistent model gives white innovations; a correlation well beyond 3 / sqrt(pairs) says the model misses
@@ -31,14 +31,19 @@ namespace ldv::est {
 
 class NoiseAdaptation {
  public:
-  // One GNSS position fix at t_s: A and R as above (the R the update used), y the innovation capped at the gate.
-  void add_fix(double t_s, const Eigen::MatrixXd& A, const Eigen::MatrixXd& R, const Eigen::VectorXd& y);
+  static constexpr int kGnssClasses = 3;  // 0 fixed (and PPP), 1 float, 2 other (single, DGPS, SBAS)
+  static const char* gnss_class_name(int gnss_class);
+  // One GNSS position fix at t_s of class gnss_class: A and R as above (the R the update used), y the innovation
+  // capped at the gate.
+  void add_fix(double t_s, const Eigen::MatrixXd& A, const Eigen::MatrixXd& R, const Eigen::VectorXd& y,
+               int gnss_class = 0);
   // The IMU noise was measured as installed (a standstill in the data): alpha's prior narrows to what that
   // measurement leaves open (vibration on the move above the standstill's), so an excess the prediction cannot
   // explain at the measured noise is not taken for noise.
   void set_imu_noise_measured();
-  double imu_scale() const;   // alpha, >= 1
-  double gnss_scale() const;  // beta, on the variance, >= 1
+  double imu_scale() const;                     // alpha, >= 1
+  double gnss_scale(int gnss_class = 0) const;  // beta of a class, on the variance, >= 1
+  long gnss_fixes(int gnss_class) const { return class_fixes_[gnss_class]; }
   // The prediction's mean share of the innovation covariance, tr(A S^-1) / rows, over the fixes seen.
   double prediction_share() const { return fixes_ > 0 ? share_sum_ / static_cast<double>(fixes_) : 0.0; }
   long fixes() const { return fixes_; }
@@ -48,13 +53,17 @@ class NoiseAdaptation {
   long lag1_products() const { return products_; }
 
  private:
-  Eigen::Vector2d theta_ = Eigen::Vector2d::Zero();
-  Eigen::Vector2d information_ = Eigen::Vector2d::Zero();
+  // ln alpha, then ln beta of each class
+  using Factors = Eigen::Matrix<double, 1 + kGnssClasses, 1>;
+  Factors theta_ = Factors::Zero();
+  Factors information_ = Factors::Zero();
   struct Fix {
     Eigen::VectorXd y;
     Eigen::MatrixXd A, R;
+    int gnss_class = 0;
   } last_;
-  Eigen::Vector2d prior_precision_ = Eigen::Vector2d::Ones();
+  Factors prior_precision_ = Factors::Ones();
+  long class_fixes_[kGnssClasses] = {0, 0, 0};
   double last_t_s_ = 0.0;
   long fixes_ = 0;
   double share_sum_ = 0.0;

@@ -10,6 +10,9 @@ Measurement gnss_position_measurement(const NavState& s, const LinearizationPoin
   Measurement m(sensors::kGnssPosition, 3, layout.size());
   m.gnss = true;
   m.step_block = kPos;
+  m.gnss_class = fix.quality == GnssQuality::kFixed || fix.quality == GnssQuality::kPpp ? 0
+                 : fix.quality == GnssQuality::kFloat                                   ? 1
+                                                                                        : 2;
   const Vec3 lever_n = lp.C_b_n * lp.lever_arm_b_m;
   const Geodetic ant = earth::offset_ned(s.pos, lever_n);
   m.y = earth::ned_between(fix.pos, ant) + lp.gnss_position_bias_n_m;

@@ -20,6 +20,9 @@ struct Measurement {
   // (NavFilter): consecutive measurements beyond the gate that agree open this block's variance and are
   // taken. -1: the sensor has no such steps (an aid's "zero" does not jump).
   int step_block = -1;
+  // A GNSS position's solution quality as NoiseAdaptation classes it (0 fixed, 1 float, 2 other): each has its own
+  // factor on the stated variance.
+  int gnss_class = 0;
 
   int rows() const { return static_cast<int>(y.size()); }
   // y, H (zero) and R (zero) sized for `rows` rows over the layout's states.

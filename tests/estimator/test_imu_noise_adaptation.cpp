@@ -8,7 +8,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <random>
 
+#include "common/geo/earth_model.hpp"
 #include "estimator/filter/nav_filter.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "sim/imu_grade.hpp"
@@ -144,7 +146,8 @@ TEST(SplitNoiseAdaptation, GivenTheGnssStdStatedFiveTimesTooSmall_ThenTheGnssFac
   for (GnssFix& f : stated_small.gnss) f.pos_std_ned_m /= 5.0;
   FilterOptions split = options_from_kfgins(right.kfgins);
   split.split_noise_adaptation = true;
-  const FilterOptions legacy = options_from_kfgins(right.kfgins);
+  FilterOptions legacy = options_from_kfgins(right.kfgins);
+  legacy.split_noise_adaptation = false;
 
   const auto factors = [](const sim::SimResult& s, const FilterOptions& o) {
     NavFilter f(o);
@@ -168,6 +171,46 @@ TEST(SplitNoiseAdaptation, GivenTheGnssStdStatedFiveTimesTooSmall_ThenTheGnssFac
   EXPECT_LE(gnss_right, 1.3);
   EXPECT_LE(imu_right, 1.5);
   EXPECT_LT(drift_small, 1.5 * drift_right);
+}
+}  // namespace
+}  // namespace ldv::est
+
+namespace ldv::est {
+namespace {
+// Issue 47, item 3 and "what it must show": float segments whose real noise is 10x the stated one. Two 60 s
+// stretches of a fixed drive turn float, with white noise of 10x the stated std added: the float class's factor
+// finds it (~100 on the variance), the fixed class's stays at 1 and the IMU's at the configured noise.
+TEST(SplitNoiseAdaptation, GivenFloatSegmentsTenTimesNoisierThanStated_ThenTheirClassFactorFindsIt) {
+  sim::SimRequest r;
+  r.grade = "3dm-gx2-typical";
+  r.seed = 42;
+  r.duration_s = 900.0;
+  r.gnss_rate_hz = 5.0;
+  r.outages = {{300.0, 30.0}, {600.0, 30.0}};
+  sim::SimResult s = sim::simulate(r);
+  const double t0 = s.gnss.front().t_s;
+  std::mt19937 rng(5);
+  std::normal_distribution<double> n(0.0, 1.0);
+  for (GnssFix& f : s.gnss) {
+    const double t = f.t_s - t0;
+    if (!((t >= 200.0 && t < 260.0) || (t >= 700.0 && t < 760.0))) continue;
+    f.quality = GnssQuality::kFloat;
+    const Vec3 noise_ned_m(10.0 * f.pos_std_ned_m.x() * n(rng), 10.0 * f.pos_std_ned_m.y() * n(rng),
+                           10.0 * f.pos_std_ned_m.z() * n(rng));
+    f.pos = earth::offset_ned(f.pos, noise_ned_m);
+  }
+  FilterOptions o = options_from_kfgins(s.kfgins);
+  o.split_noise_adaptation = true;
+  NavFilter f(o);
+  KfGinsConfig cfg = s.kfgins;
+  cfg.end_time_s = -1;
+  run_navigation(s.imu, s.gnss, cfg, f, RunCallbacks{});
+  std::printf("[ info ] float factor %.1f (expected ~100.5), fixed %.2f, IMU %.2f\n", f.gnss_noise_scale(1),
+              f.gnss_noise_scale(0), f.imu_noise_scale());
+  EXPECT_NEAR(f.gnss_noise_scale(1), 100.5, 0.3 * 100.5);
+  EXPECT_LE(f.gnss_noise_scale(0), 1.3);
+  EXPECT_GE(f.imu_noise_scale(), 0.7);
+  EXPECT_LE(f.imu_noise_scale(), 1.5);
 }
 }  // namespace
 }  // namespace ldv::est

@@ -102,11 +102,15 @@ void print_summary(const char* what, long imu_samples, double t0, double t1, lon
                  run.gyro, run.accel, measured, f.imu_noise_scale(), ft.downweighted);
     if (f.options().split_noise_adaptation) {
       const est::NoiseAdaptation& na = f.noise_adaptation();
-      std::fprintf(stderr,
-                   "  GNSS noise: position variance times %.2f the stated (std times %.2f), estimated over %ld fixes "
-                   "apart from the IMU's; innovations' lag-1 correlation %.2f (white: within +-%.2f)\n",
-                   na.gnss_scale(), std::sqrt(na.gnss_scale()), na.fixes(), na.lag1_correlation(),
-                   3.0 / std::sqrt(std::max<double>(na.lag1_products(), 1.0)));
+      for (int c = 0; c < est::NoiseAdaptation::kGnssClasses; ++c)
+        if (na.gnss_fixes(c) > 0)
+          std::fprintf(stderr,
+                       "  GNSS noise: %s solutions' position variance times %.2f the stated (std times %.2f) at the "
+                       "end, estimated over %ld fixes apart from the IMU's\n",
+                       est::NoiseAdaptation::gnss_class_name(c), na.gnss_scale(c), std::sqrt(na.gnss_scale(c)),
+                       na.gnss_fixes(c));
+      std::fprintf(stderr, "  GNSS position innovations: lag-1 correlation %.2f (white: within +-%.2f)\n",
+                   na.lag1_correlation(), 3.0 / std::sqrt(std::max<double>(na.lag1_products(), 1.0)));
     }
   }
 }
