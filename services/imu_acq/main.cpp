@@ -2,24 +2,23 @@
 // 3DM-GX2), stamps every sample in GPS time from the PPS fit (DESIGN.md section 4) and publishes
 // IMU, IMU_PPS and the 1 Hz IMU_TIMING statistics. Bad bytes are counted; nothing stops it.
 #include <CLI/CLI.hpp>
-
+#include <algorithm>
 #include <array>
+#include <ldv_lcm/imu_sample_t.hpp>
+#include <ldv_lcm/pps_event_t.hpp>
 #include <memory>
 #include <optional>
 #include <vector>
 
-#include <ldv_lcm/imu_sample_t.hpp>
-#include <ldv_lcm/pps_event_t.hpp>
-
-#include "common/logging.hpp"
 #include "common/bus/gnss_messages.hpp"
 #include "common/bus/message_conversions.hpp"
-#include "services/input/wait_readable.hpp"
+#include "common/logging.hpp"
 #include "services/imu_acq/imu_acq_options.hpp"
 #include "services/imu_acq/protocols/gx2_decoder.hpp"
 #include "services/imu_acq/protocols/tsu_decoder.hpp"
 #include "services/imu_acq/timing/kernel_pps_source.hpp"
 #include "services/imu_acq/timing_report.hpp"
+#include "services/input/wait_readable.hpp"
 #include "services/runtime/service_runtime.hpp"
 
 namespace {
@@ -83,6 +82,8 @@ int main(int argc, char** argv) {
     int64_t imu_seq = 0, pps_seq = 0, timing_seq = 0;
     double now_s = host_time_s();
     double last_label_s = -1e9, last_sample_s = -1e9, last_bad_frame_s = -1e9;
+    std::uint64_t skipped_bytes_seen = 0;  // undecodable bytes already counted into the bad-frames fault
+    bool undecodable_said = false;
     ImuTimeStamper stamper(o.stamper, [&](const JudgedEdge& e) {
       ldv_lcm::pps_event_t m{};
       m.seq = pps_seq++;
@@ -200,6 +201,21 @@ int main(int argc, char** argv) {
       const DecoderCounters& dc = decoder->counters();
       auto& counters = rt.counters();
       if (static_cast<int64_t>(dc.bad_checksum) > counters.malformed) last_bad_frame_s = now_s;
+      // Bytes no frame of the configured protocol holds are not dropped in silence (issue 46: a stream of them
+      // ended as "frames 0, bad checksum 0"): they raise the bad-frames fault and are said once.
+      // (The first bytes may be the tail of a frame the device sent before we listened: a frame's length is spared.)
+      constexpr std::uint64_t kStartSlackBytes = 256;
+      if (dc.skipped_bytes > std::max(skipped_bytes_seen, kStartSlackBytes)) {
+        last_bad_frame_s = now_s;
+        if (!undecodable_said && dc.skipped_bytes >= 1024) {
+          spdlog::warn(
+              "imu_acq: {} bytes received that are no {} frame ({} frames decoded): is protocol right, "
+              "or the line's speed?",
+              dc.skipped_bytes, o.protocol == DeviceProtocol::kGx2 ? "3DM-GX2" : "time-stamp unit", dc.frames);
+          undecodable_said = true;
+        }
+        skipped_bytes_seen = dc.skipped_bytes;
+      }
       counters.received = static_cast<int64_t>(dc.frames);
       counters.malformed = static_cast<int64_t>(dc.bad_checksum);
       counters.dropped = static_cast<int64_t>(dc.lost_samples + label_seq.lost());
@@ -224,11 +240,12 @@ int main(int argc, char** argv) {
       rt.tick();
     }
     const auto& fc = stamper.fit().counters();
-    spdlog::info("imu_acq: stopping (frames {}, samples published {}, bad checksum {}, lost samples {}, PPS edges {} "
-                 "accepted {} missing {} late {}, interval {:.9f} s +- {:.3f} us, drift {:.3f} ppm)",
-                 decoder->counters().frames, imu_seq, decoder->counters().bad_checksum, decoder->counters().lost_samples,
-                 fc.edges, fc.accepted, fc.missing, fc.late, report.mean_s(), report.std_s() * 1e6,
-                 stamper.fit().frequency_offset_ppm());
+    spdlog::info(
+        "imu_acq: stopping (frames {}, samples published {}, bad checksum {}, undecodable bytes {}, lost samples "
+        "{}, PPS edges {} accepted {} missing {} late {}, interval {:.9f} s +- {:.3f} us, drift {:.3f} ppm)",
+        decoder->counters().frames, imu_seq, decoder->counters().bad_checksum, decoder->counters().skipped_bytes,
+        decoder->counters().lost_samples, fc.edges, fc.accepted, fc.missing, fc.late, report.mean_s(),
+        report.std_s() * 1e6, stamper.fit().frequency_offset_ppm());
   } catch (const std::exception& e) {
     spdlog::error("imu_acq: {}", e.what());
     return 1;

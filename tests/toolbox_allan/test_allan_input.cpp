@@ -174,3 +174,32 @@ TEST(AllanCli, PhaseDatToJson) {
   EXPECT_EQ(text.find("nan"), std::string::npos);
   EXPECT_EQ(text.find(": inf"), std::string::npos);
 }
+
+// Issue 46 (6), silent drops: ldv allan took the median interval of the stamps, so a 100 Hz record whose stamps
+// jitter between 6 and 14 ms was analysed as 167 Hz, and holes went unsaid. The mean of the regular intervals is
+// the interval; holes hiding more than 1 % of the record are refused naming the line after the first; fewer are
+// said and bridged.
+TEST(AllanInput, GivenJitteredStampsOrHoles_ThenTheIntervalIsTheMeanAndHolesAreNamed) {
+  const auto write = [](const std::string& name, const std::function<double(int)>& t_of) {
+    const std::string path = temp_path(name);
+    std::ofstream f(path);
+    f.precision(17);
+    for (int i = 0; i < 4000; ++i)
+      f << t_of(i) << ' ' << 1e-6 * std::sin(i * 0.7) << ' ' << 1e-6 * std::sin(i * 1.1) << ' '
+        << 1e-6 * std::sin(i * 1.7) << ' ' << 1e-4 * std::cos(i * 0.3) << ' ' << 1e-4 * std::cos(i * 0.9) << ' '
+        << 0.098 + 1e-4 * std::cos(i * 1.3) << '\n';
+    return path;
+  };
+  InputOptions opt;
+  opt.format = InputFormat::kKfGins;
+  // stamps of a 100 Hz unit read late by 0 or 4 ms in turn: intervals 6 and 14 ms
+  const std::string jitter = write("jitter.txt", [](int i) { return 100.0 + 0.01 * i + (i % 2 ? 0.004 : 0.0); });
+  EXPECT_NEAR(read_allan_input(jitter, opt).front().tau0_s, 0.01, 1e-5);
+  // 200 samples missing (5 % of the record) after line 1000
+  const std::string holes = write("holes.txt", [](int i) { return 100.0 + 0.01 * (i < 1000 ? i : i + 200); });
+  const std::string e = error_of([&] { read_allan_input(holes, opt); });
+  EXPECT_NE(e.find("holes.txt:1001: 1 holes"), std::string::npos) << e;
+  // one sample missing: said, analysed
+  const std::string one = write("one_hole.txt", [](int i) { return 100.0 + 0.01 * (i < 1000 ? i : i + 1); });
+  EXPECT_NEAR(read_allan_input(one, opt).front().tau0_s, 0.01, 1e-9);
+}

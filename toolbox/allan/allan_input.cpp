@@ -9,6 +9,7 @@
 
 #include "common/io/input_error.hpp"
 #include "common/io/text_table.hpp"
+#include "common/logging.hpp"
 #include "toolbox/allan/sensor_units.hpp"
 
 namespace ldv::allan {
@@ -55,12 +56,58 @@ bool looks_numeric(std::string_view s) {
   return ec == std::errc() && p == s.data() + s.size();
 }
 
-double median_interval(std::vector<double> dts, const std::string& path) {
-  if (dts.empty()) throw InputError(path, 0, "cannot infer the sample interval from fewer than 2 time stamps: give --rate or --tau0");
-  std::nth_element(dts.begin(), dts.begin() + dts.size() / 2, dts.end());
-  const double dt = dts[dts.size() / 2];
-  if (!(dt > 0.0)) throw InputError(path, 0, "time stamps do not increase: give --rate or --tau0");
-  return dt;
+// The sampling interval of a record from its time stamps, and what the stamps say against analysing it as one
+// uniformly sampled series (issue 46: the median of jittered stamps took a 100 Hz record for 167 Hz, and holes
+// went unsaid). The interval is the mean of the regular intervals (a jitter averages out; the median does not);
+// a hole is an interval beyond 1.5 of it. Holes that hide more than 1 % of the record are refused (an Allan
+// variance of a record with holes is not the sensor's); fewer are said and bridged as one sample each.
+// `given_tau0_s` (--rate / --tau0), when > 0, is the interval; the stamps are then checked against it.
+double sample_interval(const std::vector<double>& dts, const std::vector<long>& lines, const std::string& path,
+                       double given_tau0_s) {
+  if (dts.empty()) {
+    if (given_tau0_s > 0) return given_tau0_s;
+    throw InputError(path, 0, "cannot infer the sample interval from fewer than 2 time stamps: give --rate or --tau0");
+  }
+  double span = 0.0;
+  for (const double dt : dts) span += dt;
+  double interval = given_tau0_s > 0 ? given_tau0_s : span / static_cast<double>(dts.size());
+  if (!(interval > 0.0)) throw InputError(path, 0, "time stamps do not increase: give --rate or --tau0");
+  if (given_tau0_s <= 0) {  // the mean without the holes
+    double sum = 0.0;
+    long n = 0;
+    for (const double dt : dts)
+      if (dt <= 1.5 * interval) sum += dt, ++n;
+    if (n > 0) interval = sum / static_cast<double>(n);
+  }
+  long holes = 0, first = -1;
+  double missing_s = 0.0;
+  for (size_t i = 0; i < dts.size(); ++i)
+    if (dts[i] > 1.5 * interval) {
+      ++holes;
+      missing_s += dts[i] - interval;
+      if (first < 0) first = static_cast<long>(i);
+    }
+  if (holes > 0) {
+    char b[400];
+    std::snprintf(b, sizeof b,
+                  "%ld holes in the time stamps hiding %.6g s of %.6g s (the first: %.6g s before this line; the "
+                  "interval is %.6g s)",
+                  holes, missing_s, span, dts[first], interval);
+    if (missing_s > 0.01 * span)
+      throw InputError(path, lines[first],
+                       std::string(b) +
+                           ": an Allan variance needs one uniformly sampled record; analyse the pieces "
+                           "between the holes apart");
+    spdlog::warn("{}:{}: {}; analysed as one record, each hole bridged as one sample", path, lines[first], b);
+  }
+  // Jitter: the median and the mean interval apart by more than 10 % (say which is taken).
+  std::vector<double> sorted(dts.begin(), dts.begin() + std::min<size_t>(dts.size(), 100000));
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  const double median = sorted[sorted.size() / 2];
+  if (std::abs(median - interval) > 0.1 * interval)
+    spdlog::warn("{}: irregular time stamps (median interval {:.6g} s, mean {:.6g} s): the {} is taken ({:.6g} Hz)",
+                 path, median, interval, given_tau0_s > 0 ? "given interval" : "mean", 1.0 / interval);
+  return interval;
 }
 
 double explicit_tau0(const InputOptions& opt) {
@@ -88,20 +135,21 @@ std::vector<PhaseSeries> read_kfgins(const std::string& path, const InputOptions
   static const char* names[6] = {"gyro_x", "gyro_y", "gyro_z", "accel_x", "accel_y", "accel_z"};
   std::vector<std::vector<double>> inc(6);
   std::vector<double> dts;
+  std::vector<long> dt_lines;
   double t_prev = 0.0;
   long rows = 0;
   read_numeric_table(path, 7, 1000, [&](long line, const std::vector<double>& v) {
     if (rows > 0) {
       const double dt = v[0] - t_prev;
       if (!(dt > 0.0)) throw InputError(path, line, "column 1: time does not increase (" + std::to_string(v[0]) + " after " + std::to_string(t_prev) + ")");
-      if (dts.size() < 100000) dts.push_back(dt);
+      dts.push_back(dt);
+      dt_lines.push_back(line);
     }
     t_prev = v[0];
     for (int c = 0; c < 6; ++c) inc[c].push_back(v[1 + c]);
     if (++rows % kProgressRows == 0 && progress) progress("read " + std::to_string(rows) + " rows");
   });
-  double tau0 = explicit_tau0(opt);
-  if (tau0 == 0.0) tau0 = median_interval(dts, path);
+  const double tau0 = sample_interval(dts, dt_lines, path, explicit_tau0(opt));
   std::vector<PhaseSeries> out;
   for (int c = 0; c < 6; ++c) {
     check_channel(inc[c], path, names[c]);
@@ -132,6 +180,7 @@ std::vector<PhaseSeries> read_csv(const std::string& path, const InputOptions& o
   std::vector<double> scale;
   std::vector<std::vector<double>> data;
   std::vector<double> dts;
+  std::vector<long> dt_lines;
   double t_prev = 0.0;
   long rows = 0;
   std::vector<std::string_view> fields;
@@ -171,7 +220,14 @@ std::vector<PhaseSeries> read_csv(const std::string& path, const InputOptions& o
     }
     if (time_col >= 0) {
       const double t = parse_double(fields[time_col], path, line, time_col + 1);
-      if (rows > 0 && dts.size() < 100000) dts.push_back(t - t_prev);
+      if (rows > 0) {
+        if (!(t > t_prev))
+          throw InputError(
+              path, line,
+              "time column: time does not increase (" + std::to_string(t) + " after " + std::to_string(t_prev) + ")");
+        dts.push_back(t - t_prev);
+        dt_lines.push_back(line);
+      }
       t_prev = t;
     }
     for (size_t i = 0; i < cols.size(); ++i) data[i].push_back(parse_double(fields[cols[i]], path, line, cols[i] + 1) * scale[i]);
@@ -179,10 +235,9 @@ std::vector<PhaseSeries> read_csv(const std::string& path, const InputOptions& o
   });
   if (header.empty()) throw InputError(path, 0, "empty file: expected a header line naming the columns");
   double tau0 = explicit_tau0(opt);
-  if (tau0 == 0.0) {
-    if (time_col < 0) throw InputError(path, 0, "the sample interval is unknown: give --rate, --tau0 or --time-column");
-    tau0 = median_interval(dts, path);
-  }
+  if (tau0 == 0.0 && time_col < 0)
+    throw InputError(path, 0, "the sample interval is unknown: give --rate, --tau0 or --time-column");
+  if (time_col >= 0) tau0 = sample_interval(dts, dt_lines, path, tau0);
   std::vector<PhaseSeries> out;
   for (size_t i = 0; i < cols.size(); ++i) {
     check_channel(data[i], path, header[cols[i]]);

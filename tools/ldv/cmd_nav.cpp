@@ -81,11 +81,11 @@ void print_summary(const char* what, long imu_samples, double t0, double t1, lon
   const auto& ft = f.faults();
   std::fprintf(stderr,
                "ldv nav: %s: %ld IMU samples from %.3f to %.3f s, %ld GNSS fixes; initial state: %s\n"
-               "  gate rejections %ld (resyncs %ld, edge fixes retracted %ld), covariance resets %ld, state resets "
-               "%ld, IMU samples rejected %ld,"
+               "  gate rejections %ld (resyncs %ld, edge fixes retracted %ld), late measurements dropped %ld (older "
+               "than the IMU history), covariance resets %ld, state resets %ld, IMU samples rejected %ld,"
                " gaps %ld; ZUPTs %ld (%ld skipped: moving off); final status %s\n  %.3f s (%.0f IMU samples/s) -> %s\n",
                what, imu_samples, t0, t1, fixes, init.c_str(), ft.gate_rejections, ft.gate_resyncs, ft.fixes_retracted,
-               ft.covariance_resets, ft.state_resets, ft.imu_rejected, ft.imu_gaps, ft.zupts_applied,
+               ft.late_dropped, ft.covariance_resets, ft.state_resets, ft.imu_rejected, ft.imu_gaps, ft.zupts_applied,
                ft.zupts_skipped_moving, est::describe_status(f.status()).c_str(), elapsed,
                imu_samples / std::max(elapsed, 1e-9), nav_path.c_str());
   if (f.options().adapt_imu_noise) {
@@ -218,6 +218,11 @@ void run_lcm_log(const NavArgs& a, const KfGinsConfig& cfg, est::FilterOptions o
         sum.corrupt_log_events);
     print_summary("replayed through FusionEngine", n, t0, t1, sum.gnss_messages, sum.initialisation, engine.filter(),
                   elapsed, nav_path, 0.0);
+    if (const long late = engine.filter().faults().late_dropped; late > 0)
+      std::fprintf(stderr,
+                   "ldv nav: WARNING: %ld measurements arrived later than the IMU history kept (--history %.1f s) and "
+                   "were not used; a larger --history takes them (as the live service's history_s)\n",
+                   late, a.history_s);
     if (const est::ImuLatencyWindow* w = engine.session().imu_latency_window()) {
       for (const est::ImuLatencyDecision& d : w->decisions())
         std::fprintf(stderr,
