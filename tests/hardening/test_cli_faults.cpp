@@ -629,3 +629,50 @@ TEST(CliFaults, GivenATimeOffsetEstimateThatStepsBack_ThenTheNavTimesStillOnlyIn
 }
 }  // namespace
 }  // namespace ldv::test
+
+namespace ldv {
+namespace {
+// Issue 46 (6), silent drops: two logs of one drive that overlap in time (a logger restarted, two loggers) put
+// their common IMU samples into imu.txt twice, in silence. One row per epoch, the repeats counted and said.
+TEST(LcmLogFaults, GivenTwoOverlappingLogs_ThenExportWritesEachEpochOnceAndSaysSo) {
+  const fs::path dir = temp_dir("lcmlog_overlap");
+  sim::SimRequest req;
+  req.grade = "hg1700-typical";
+  req.duration_s = 20.0;
+  req.gnss_rate_hz = 5.0;
+  req.start_sow_s = 345600.0;
+  const sim::SimResult sim = sim::simulate(req);
+  const int week = 2300;
+  auto bytes = [](const auto& m) {
+    std::string b(static_cast<size_t>(m.getEncodedSize()), '\0');
+    m.encode(b.data(), 0, static_cast<int>(b.size()));
+    return b;
+  };
+  // the first log holds samples [0, 3000), the second [2000, end): 1000 samples in both
+  const auto write_log = [&](const fs::path& p, size_t from, size_t to) {
+    std::ofstream f(p, std::ios::binary);
+    int64_t n = 0;
+    for (size_t i = from; i < to; ++i)
+      put_event(f, n++, "IMU", bytes(message_from_imu(sim.imu[i], week, static_cast<int64_t>(i))));
+  };
+  write_log(dir / "a.lcmlog", 0, 3000);
+  write_log(dir / "b.lcmlog", 2000, sim.imu.size());
+  const auto ex =
+      run_ldv({"export", (dir / "a.lcmlog").string(), (dir / "b.lcmlog").string(), "--out", (dir / "export").string()});
+  ASSERT_EQ(ex.exit_code, 0) << ex.output;
+  long rows = 0, back = 0;
+  double last_t = -1e300;
+  std::ifstream in(dir / "export" / "imu.txt");
+  for (double t; in >> t;) {
+    std::string rest;
+    std::getline(in, rest);
+    back += !(t > last_t);
+    last_t = t;
+    ++rows;
+  }
+  EXPECT_EQ(rows, static_cast<long>(sim.imu.size()));
+  EXPECT_EQ(back, 0);
+  EXPECT_NE(ex.output.find("1000 IMU and 0 GNSS messages repeated an epoch"), std::string::npos) << ex.output;
+}
+}  // namespace
+}  // namespace ldv

@@ -41,7 +41,8 @@ void add_export_command(CLI::App& app) {
     std::vector<ImuIncrement> imu;
     std::vector<GnssFix> gnss;
     std::unique_ptr<NavWriter> nav, tspi;
-    long malformed = 0, unlocked = 0, nav_n = 0, tspi_n = 0, corrupt_events = 0;
+    long malformed = 0, unlocked = 0, nav_n = 0, tspi_n = 0, corrupt_events = 0, rows_not_advancing = 0;
+    double last_nav_t = -1e300, last_tspi_t = -1e300;
     // KF-GINS files count seconds of the first week on past 604800 after a rollover: in time order across it.
     ContinuousGpsTime gps_time;
     for (const std::string& path : logs) {
@@ -72,7 +73,14 @@ void add_export_command(CLI::App& app) {
             continue;
           }
           if (!nav) nav = std::make_unique<NavWriter>((fs::path(out_dir) / "nav.nav").string());
-          nav->write(nav_record_of(m));
+          const NavRecord r = nav_record_of(m);
+          const double t = gps_time.seconds(r.week, r.sow_s);
+          if (!(t > last_nav_t)) {  // a file's times only increase: an epoch already written (overlapping logs)
+            ++rows_not_advancing;
+            continue;
+          }
+          last_nav_t = t;
+          nav->write(r);
           ++nav_n;
         } else if (ev.channel == "TSPI") {
           ldv_lcm::tspi_v1_t m;
@@ -81,7 +89,14 @@ void add_export_command(CLI::App& app) {
             continue;
           }
           if (!tspi) tspi = std::make_unique<NavWriter>((fs::path(out_dir) / "tspi.nav").string());
-          tspi->write(nav_record_of(m));
+          const NavRecord r = nav_record_of(m);
+          const double t = gps_time.seconds(r.week, r.sow_s);
+          if (!(t > last_tspi_t)) {
+            ++rows_not_advancing;
+            continue;
+          }
+          last_tspi_t = t;
+          tspi->write(r);
           ++tspi_n;
         }
       }
@@ -91,7 +106,18 @@ void add_export_command(CLI::App& app) {
     auto by_time = [](const auto& a, const auto& b) { return a.t_s < b.t_s; };
     std::stable_sort(imu.begin(), imu.end(), by_time);
     std::stable_sort(gnss.begin(), gnss.end(), by_time);
-    gnss.erase(std::unique(gnss.begin(), gnss.end(), [](const GnssFix& a, const GnssFix& b) { return a.t_s == b.t_s; }), gnss.end());
+    // Overlapping logs (or a message logged twice) hold an epoch more than once: one row each, counted and said
+    // (issue 46: duplicate IMU samples went into imu.txt in silence).
+    constexpr double kSameEpoch_s = 1e-6;
+    const auto same_epoch = [](const auto& a, const auto& b) { return std::abs(a.t_s - b.t_s) < kSameEpoch_s; };
+    const size_t imu_read = imu.size(), gnss_read = gnss.size();
+    imu.erase(std::unique(imu.begin(), imu.end(), same_epoch), imu.end());
+    gnss.erase(std::unique(gnss.begin(), gnss.end(), same_epoch), gnss.end());
+    if (imu.size() < imu_read || gnss.size() < gnss_read)
+      std::fprintf(stderr,
+                   "ldv export: %zu IMU and %zu GNSS messages repeated an epoch already read (overlapping "
+                   "logs?): one row each written\n",
+                   imu_read - imu.size(), gnss_read - gnss.size());
     // The KF-GINS IMU file has no interval column: a reader takes the time difference as the interval,
     // so a lost sample would stretch its successor's increment over the gap. Bridge each gap with the
     // successor's rates (counted and reported) so the file's increments cover time without holes.
@@ -111,6 +137,11 @@ void add_export_command(CLI::App& app) {
     }
     imu.swap(filled);
     if (bridged > 0) std::fprintf(stderr, "ldv export: %ld lost IMU samples bridged with their successor's rates\n", bridged);
+    if (rows_not_advancing > 0)
+      std::fprintf(stderr,
+                   "ldv export: %ld NAV/TSPI messages not after the row written before them (overlapping logs?): "
+                   "not written, the files' times only increase\n",
+                   rows_not_advancing);
     if (!imu.empty()) write_kfgins_imu((fs::path(out_dir) / "imu.txt").string(), imu);
     // 13 columns only when every fix has a velocity: a fix without one has no velocity std to write (a 0 there
     // made `ldv nav` drop every line as "std not positive").
