@@ -215,7 +215,12 @@ void refuse_unknown_in(const std::string& path, const YAML::Node& map, const std
                        const std::string& prefix) {
   if (!map.IsMap()) return;
   for (const auto& kv : map) {
-    const std::string key = kv.first.as<std::string>();
+    // A key is a name: a list or a map in a key's place (a fuzz finding: yaml-cpp's "bad conversion", no file)
+    if (!kv.first.IsScalar())
+      throw InputError(path, kv.first.Mark().line + 1,
+                       "expected a key name" + (prefix.empty() ? std::string() : " in '" + prefix + "'") + ", found " +
+                           (kv.first.IsSequence() ? "a list" : "a map"));
+    const std::string key = kv.first.Scalar();
     if (std::find(known.begin(), known.end(), key) != known.end()) continue;
     const std::string near = config::nearest_name(key, known);
     throw InputError(path, kv.first.Mark().line + 1,

@@ -596,3 +596,12 @@ TEST(KfGinsConfigSchema, GivenADataPathTooLongToLookUp_ThenTheConfigLoadsAndRead
   EXPECT_NE(e.find(long_name.substr(0, 100)), std::string::npos) << e.substr(0, 200);
 }
 }  // namespace ldv
+
+namespace ldv {
+// A libFuzzer finding in the CI's first 15 s runs (corpus/fuzz_yaml_configs/finding_list_as_key): a list in a
+// key's place threw yaml-cpp's "bad conversion", naming no file. It is refused naming the file and line.
+TEST(KfGinsConfigSchema, GivenAListInAKeysPlace_ThenTheFileAndLineAreNamed) {
+  const std::string e = config_error("[3, 3, 3]: 1\n");
+  EXPECT_NE(e.find(".yaml:14: expected a key name, found a list"), std::string::npos) << e;  // the last line
+}
+}  // namespace ldv
