@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The test command: install dependencies, build, run the default test suite (everything except the long
 # studies: `montecarlo`, the full option fuzz `fuzz`, the ASan+UBSan build `sanitize`; each runs with
-# `ctest --test-dir build -L LABEL`), then every libFuzzer target for LDV_CI_FUZZ_SECONDS (15) from the kept corpus
-# (clang, ASan, UBSan in build-fuzz/; a finding fails the run). Integration tests run in private network namespaces.
+# `ctest --test-dir build -L LABEL`), then every libFuzzer target from the kept corpus with a fixed seed and number
+# of inputs, about 15 s each (clang, ASan, UBSan in build-fuzz/; a finding fails the run). Integration tests run in private network namespaces.
 # Prints at its end how long each phase took (also when a phase fails).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -35,5 +35,5 @@ current=test
 ctest --test-dir build --output-on-failure -j2 -LE 'montecarlo|fuzz|sanitize' --timeout 900
 end_phase test
 current=fuzz
-tests/fuzz/run_libfuzzer.sh "$PWD" "$PWD/build-fuzz" "${LDV_CI_FUZZ_SECONDS:-15}"
+tests/fuzz/run_libfuzzer.sh "$PWD" "$PWD/build-fuzz" "${LDV_CI_FUZZ_SECONDS:-15}" --ci
 end_phase fuzz

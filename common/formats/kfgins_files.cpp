@@ -11,6 +11,7 @@
 #include "common/formats/imu_time_gaps.hpp"
 #include "common/io/text_table.hpp"
 #include "common/logging.hpp"
+#include "common/time/gps_time.hpp"
 
 namespace ldv {
 namespace {
@@ -316,6 +317,13 @@ std::vector<NavRecord> read_nav(const std::string& path) {
     NavRecord r;
     r.week = static_cast<int>(v[0]);
     r.sow_s = v[1];
+    // In time order, as every comparison and interpolation of it needs (the error was "navigation series: time
+    // goes backwards", naming no file or line).
+    if (!out.empty() && (r.week - out.back().week) * kSecondsPerWeek + (r.sow_s - out.back().sow_s) < 0.0)
+      throw InputError(path, line,
+                       "time goes backwards: week " + std::to_string(r.week) + " " + seconds(r.sow_s) + " after week " +
+                           std::to_string(out.back().week) + " " + seconds(out.back().sow_s) +
+                           " (a .nav file is in time order)");
     r.pos = {v[2] * kDegToRad, v[3] * kDegToRad, v[4]};
     r.vel_n_mps = Vec3(v[5], v[6], v[7]);
     r.rpy_rad = Vec3(v[8], v[9], v[10]) * kDegToRad;

@@ -605,3 +605,18 @@ TEST(KfGinsConfigSchema, GivenAListInAKeysPlace_ThenTheFileAndLineAreNamed) {
   EXPECT_NE(e.find(".yaml:14: expected a key name, found a list"), std::string::npos) << e;  // the last line
 }
 }  // namespace ldv
+
+namespace ldv {
+// Issue 46 (6): a .nav whose time goes back was refused by "navigation series: time goes backwards", naming no file
+// or line (ldv compare, report, outage --truth). The reader names both.
+TEST(NavFileReader, GivenATimeThatGoesBack_ThenTheFileAndLineAreNamed) {
+  std::string text;
+  for (int i = 0; i < 10; ++i) {
+    const double sow = i == 6 ? 100.0 : 100.0 + i;  // line 7 steps back to the first epoch
+    text += "2300 " + std::to_string(sow) + " 30.0 114.0 20.0 0 0 0 0 0 0\n";
+  }
+  const std::string p = write_temp("back.nav", text);
+  const std::string e = error_of([&] { read_nav(p); });
+  EXPECT_NE(e.find("back.nav:7: time goes backwards"), std::string::npos) << e;
+}
+}  // namespace ldv

@@ -676,3 +676,31 @@ TEST(LcmLogFaults, GivenTwoOverlappingLogs_ThenExportWritesEachEpochOnceAndSaysS
 }
 }  // namespace
 }  // namespace ldv
+
+namespace ldv {
+namespace {
+// Issue 46 (6): ldv report took side inputs of the wrong shape: a JSON that is another command's (or a list)
+// ended in yaml-cpp's raw "bad conversion" or an empty section, and a .nav given as the std file was drawn as
+// standard deviations. Each is refused naming the file and what it should be.
+TEST(CliFaults, GivenReportSideInputsOfTheWrongShape_ThenEachIsRefusedNamingTheFile) {
+  const fs::path dir = temp_dir("report_shapes");
+  simulated_files(dir, 30.0);
+  const std::string nav = (dir / "run.nav").string();
+  ASSERT_EQ(run_ldv({"nav", "--kfgins-config", (dir / "sim" / "kfgins.yaml").string(), "--out", nav}).exit_code, 0);
+  std::ofstream(dir / "list.json") << "[1, 2, 3]\n";
+  std::ofstream(dir / "other.json") << "{\"channels\": []}\n";  // an ldv allan --json
+  const std::string out = (dir / "report").string();
+  const auto as_std = run_ldv({"report", "--nav", nav, "--std", nav, "--out", out});
+  EXPECT_EQ(as_std.exit_code, 2) << as_std.output;
+  EXPECT_NE(as_std.output.find("run.nav:1: column 4: expected a standard deviation"), std::string::npos)
+      << as_std.output;
+  for (const char* json : {"list.json", "other.json"}) {
+    const auto r = run_ldv({"report", "--nav", nav, "--outage-json", (dir / json).string(), "--out", out});
+    EXPECT_EQ(r.exit_code, 2) << json << ": " << r.output;
+    EXPECT_NE(r.output.find(std::string(json) + ": expected the JSON that `ldv outage --json` writes"),
+              std::string::npos)
+        << r.output;
+  }
+}
+}  // namespace
+}  // namespace ldv

@@ -15,6 +15,19 @@ YAML::Node load_json_file(const std::string& path) {
   }
 }
 
+YAML::Node load_json_object(const std::string& path, const std::vector<std::string>& keys,
+                            const std::string& written_by) {
+  const YAML::Node j = load_json_file(path);
+  std::string missing;
+  for (const std::string& k : keys)
+    if (!j.IsMap() || !j[k]) missing += (missing.empty() ? "" : ", ") + k;
+  if (!missing.empty())
+    throw InputError(path, 0,
+                     "expected the JSON that " + written_by + " writes: an object with " + missing +
+                         (j.IsMap() ? "" : std::string(" (found ") + (j.IsSequence() ? "a list" : "no object") + ")"));
+  return j;
+}
+
 double json_double(const YAML::Node& n, double fallback) {
   if (!n || n.IsNull() || !n.IsScalar()) return fallback;
   try {

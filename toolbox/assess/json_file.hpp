@@ -10,6 +10,9 @@ namespace ldv::assess {
 
 // Throws InputError naming the file if it cannot be read or parsed.
 YAML::Node load_json_file(const std::string& path);
+// ... and an object with these keys, else InputError naming the file and the command whose JSON it should be.
+YAML::Node load_json_object(const std::string& path, const std::vector<std::string>& keys,
+                            const std::string& written_by);
 std::vector<double> json_doubles(const YAML::Node& array);  // null entries become NaN
 double json_double(const YAML::Node& n, double fallback);   // fallback when missing or null
 

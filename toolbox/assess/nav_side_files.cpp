@@ -1,6 +1,5 @@
 #include "toolbox/assess/nav_side_files.hpp"
 
-
 #include "common/io/input_error.hpp"
 #include "common/io/text_table.hpp"
 
@@ -34,7 +33,13 @@ std::vector<SeparationRow> read_separation_file(const std::string& path) {
 std::vector<StdRow> read_std_file(const std::string& path) {
   std::vector<StdRow> rows;
   // week sow + 9 navigation stds, then two columns per effect state (any number).
-  read_numeric_table(path, 11, 100000, [&](long, const std::vector<double>& v) {
+  read_numeric_table(path, 11, 100000, [&](long line, const std::vector<double>& v) {
+    // Standard deviations are >= 0: a .nav given in its place (latitudes, negative velocities) is refused
+    for (int i = 2; i <= 10; ++i)
+      if (!(v[i] >= 0.0))
+        throw InputError(path, line,
+                         "column " + std::to_string(i + 1) + ": expected a standard deviation (>= 0), found " +
+                             std::to_string(v[i]) + ": is this the _std.txt of an `ldv nav` run?");
     StdRow r;
     r.t_s = v[1];
     r.pos_ned_m = Vec3(v[2], v[3], v[4]);

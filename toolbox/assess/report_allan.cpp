@@ -30,7 +30,7 @@ double avar_r(const AllanTerms& a, double tau) { return a.R * a.R * tau * tau / 
 }  // namespace
 
 void add_allan_section(HtmlPage& page, const std::string& dir, const ReportInputs& in) {
-  const YAML::Node j = load_json_file(in.allan_json);
+  const YAML::Node j = load_json_object(in.allan_json, {"channels"}, "`ldv allan --json`");
   page.section("Allan deviation with the fitted noise terms");
   int ch = 0;
   for (const auto& c : j["channels"]) {

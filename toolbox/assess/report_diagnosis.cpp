@@ -36,7 +36,7 @@ void numeric_leaves(const YAML::Node& n, const std::string& prefix, std::map<std
 }  // namespace
 
 void add_diagnosis_section(HtmlPage& page, const std::string& dir, const ReportInputs& in) {
-  const YAML::Node j = load_json_file(in.diagnose_json);
+  const YAML::Node j = load_json_object(in.diagnose_json, {"model", "candidates"}, "`ldv diagnose --json`");
   page.section("Diagnosis");
   page.paragraph("Model " + text_of(j["model"]) + "; consistent: " + text_of(j["consistent"]) +
                  "; verdict: add " + (j["verdict"] ? text_of(j["verdict"]["add"]) : std::string("-")) + ".");

@@ -9,7 +9,7 @@
 namespace ldv::assess {
 
 void add_outage_section(HtmlPage& page, const std::string& dir, const ReportInputs& in) {
-  const YAML::Node j = load_json_file(in.outage_json);
+  const YAML::Node j = load_json_object(in.outage_json, {"lengths", "outages"}, "`ldv outage --json`");
   const std::string reference = j["reference"] ? j["reference"].as<std::string>() : "reference";
   page.section("GNSS outages: drift against the " + reference);
   HtmlTable table{"Drift at the outage end (paper Table 12) and the KF-GINS metric",

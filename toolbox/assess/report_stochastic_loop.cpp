@@ -59,7 +59,7 @@ void add_stochastic_loop_section(HtmlPage& page, const std::string& dir, const R
   std::vector<std::string> channel_names;
   std::vector<std::vector<Step>> channels;
   for (const std::string& file : in.allan_loop_json) {
-    const YAML::Node j = load_json_file(file);
+    const YAML::Node j = load_json_object(file, {"channels"}, "`ldv allan --json`");
     for (const auto& c : j["channels"]) {
       if (!c["name"] || !c["misfit"]) continue;
       const std::string name = c["name"].as<std::string>();
