@@ -107,6 +107,9 @@ struct FilterOptions {
   bool installed_noise_floor = true;
   double step_confirm_s = 1.0;
   int gate_max_consecutive_rejects = 10;  // then accept (re-synchronise) and flag
+  // Judge each measurement against a gate at all. KF-GINS has none (GIEngine::gnssUpdate updates with every fix):
+  // --kfgins-compatible / ldv.kfgins_compatible turn it off, so that mode is KF-GINS fix by fix on real data.
+  bool gate_measurements = true;
   bool use_gnss_velocity = true;
   ZuptOptions zupt;
   double history_s = 3.0;            // how late a measurement may arrive (IMU history kept)

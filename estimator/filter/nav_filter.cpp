@@ -3,6 +3,7 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string_view>
@@ -642,7 +643,7 @@ void NavFilter::apply_measurement(const Measurement& given) {
   const Measurement& m = rescaled ? *rescaled : given;
   RejectRun& run = reject_run(m.sensor);
   if (run.last_y.size() != m.y.size()) run.last_y = Eigen::VectorXd::Zero(m.y.size());
-  const double gate = gate_threshold(m.rows());
+  const double gate = opt_.gate_measurements ? gate_threshold(m.rows()) : std::numeric_limits<double>::infinity();
   // Robust: a step is confirmed by two or more measurements beyond the gate in a row, spanning
   // step_confirm_s (a spike of multipath is shorter); KF-GINS: after a count of rejections. Only sensors
   // whose measured quantity can step (m.step_block) are ever forced.

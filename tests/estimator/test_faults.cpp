@@ -469,5 +469,33 @@ TEST(Faults, GivenRepeatedStateResets_ThenTheStateTimeFollowsEverySample) {
   EXPECT_GT(f.faults().state_resets, 0) << "the case resets the state";
 }
 
+// Issue 47, item 5: --kfgins-compatible rejected beyond a gate and forced after 10 rejections; KF-GINS has no gate
+// (GIEngine::gnssUpdate updates with every fix). Without the gate every fix is taken, the 50 m jump too.
+TEST(Faults, GivenNoGateAsKfGins_ThenEveryFixUpdatesTheFilter) {
+  FilterOptions o;
+  o.robust_update = false;
+  o.gate_measurements = false;
+  o.adapt_imu_noise = false;
+  o.zupt.enabled = false;
+  NavFilter f(o);
+  f.initialize(start(), NavStd{});
+  double t = 100.0;
+  GnssFix fix;
+  fix.pos = start().pos;
+  fix.pos_std_ned_m = Vec3::Constant(0.02);
+  int records = 0, rejected = 0;
+  for (int k = 0; k < 20; ++k) {
+    fix.t_s = t + 0.1;
+    fix.pos.lat_rad = start().pos.lat_rad + (k == 5 ? 50.0 / 6.4e6 : 0.0);  // one fix 50 m off
+    f.add_gnss(fix);
+    for (int i = 0; i < 40; ++i) f.add_imu(static_increment(t += 0.005, 0.005));
+    for (const auto& r : f.take_innovations()) ++records, rejected += !r.used();
+  }
+  EXPECT_EQ(records, 20);
+  EXPECT_EQ(rejected, 0);
+  EXPECT_EQ(f.faults().gate_rejections, 0);
+  EXPECT_EQ(f.faults().gate_resyncs, 0);
+}
+
 }  // namespace
 }  // namespace ldv::est

@@ -126,8 +126,9 @@ NavInputs load_nav_model(const NavInputArgs& a) {
     in.config.output_path = ".";
   }
   if (a.lever.size() == 3) in.options.lever_arm.init = Vec3(a.lever[0], a.lever[1], a.lever[2]);
-  if (a.kfgins_compatible) {  // KF-GINS's gate, and its alignment: body x along the course
+  if (a.kfgins_compatible) {  // KF-GINS's update (every fix, no gate), and its alignment: body x along the course
     in.options.robust_update = false;
+    in.options.gate_measurements = false;
     in.options.adapt_imu_noise = false;
     if (!has_ldv_key(in.config, "align_hypotheses")) in.options.align_hypotheses = 1;
   }

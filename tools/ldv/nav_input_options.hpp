@@ -47,8 +47,8 @@ inline void add_nav_input_options(CLI::App* c, assess::NavInputArgs& in, bool co
                 "(default ldv.imu_latency, else auto; off with --imu-time-shift or --kfgins-compatible)")
       ->check(CLI::IsMember({"auto", "off"}));
   c->add_flag("--kfgins-compatible", in.kfgins_compatible,
-              "KF-GINS's measurement gate (reject beyond it, force after 10 rejections) instead of the robust update "
-              "(default ldv.kfgins_compatible, else off)");
+              "do what KF-GINS does: every GNSS fix updates the filter (no gate, no robust update), no noise "
+              "adaptation, no latency search (default ldv.kfgins_compatible, else off)");
   c->add_option("--aid", in.aids,
                 "land-vehicle aid (repeatable): nhc (non-holonomic constraint), zaru (zero angular rate at stops), "
                 "odometer (wheel speed from --odometer or ldv.odopath); default ldv.aids, else none")
