@@ -170,6 +170,7 @@ void FilterOptions::check() const {
   require(finite_in(cov_period_s, 1e-6, 60.0), "cov_period_s: must be in (0, 60] s");
   require(gate_probability > 0.0 && gate_probability < 1.0, "gate_probability: must be in (0, 1)");
   require(gate_max_consecutive_rejects >= 1, "gate_max_consecutive_rejects: must be >= 1");
+  require(finite_in(measurement_snap_s, 0.0, 0.1), "measurement_snap_s: must be in [0, 0.1] s");
   require(finite_in(history_s, 0.0, 3600.0), "history_s: must be in [0, 3600] s");
   require(finite_in(align_speed_mps, 1e-3, 1e3), "align_speed_mps: must be in (0, 1000] m/s");
   require(align_hypotheses <= 360, "align_hypotheses: at most 360");

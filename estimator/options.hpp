@@ -110,6 +110,10 @@ struct FilterOptions {
   // Judge each measurement against a gate at all. KF-GINS has none (GIEngine::gnssUpdate updates with every fix):
   // --kfgins-compatible / ldv.kfgins_compatible turn it off, so that mode is KF-GINS fix by fix on real data.
   bool gate_measurements = true;
+  // A measurement this close to an IMU epoch is applied at that epoch instead of splitting the IMU interval at it:
+  // KF-GINS's TIME_ALIGN_ERR, 1 ms, with --kfgins-compatible (a fix 0.9 ms after an IMU sample updated the state
+  // at the sample there, 1-3 cm from ldv's split on the real walk); 0: split exactly.
+  double measurement_snap_s = 0.0;
   bool use_gnss_velocity = true;
   ZuptOptions zupt;
   double history_s = 3.0;            // how late a measurement may arrive (IMU history kept)

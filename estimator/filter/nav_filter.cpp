@@ -269,17 +269,21 @@ void NavFilter::process_imu(const ImuIncrement& raw) {
   }
   rem.dt_s = t_end - t_from;
 
+  // A measurement within `snap` of the sample's end is applied there (KF-GINS: 1 ms,
+  // FilterOptions::measurement_snap_s), one within it after the start at the start; else the interval is split at its
+  // epoch.
+  const double snap = std::max(kSplitTolerance_s, opt_.measurement_snap_s);
   while (!pending_.empty()) {
     const double t_m = pending_.front().t_s() - c_.model.time_offset_s;
-    if (t_m > t_end + kSplitTolerance_s) break;
-    if (t_m > c_.nav.t_s + kSplitTolerance_s && t_m < t_end - kSplitTolerance_s) {
+    if (t_m > t_end + snap) break;
+    if (t_m > c_.nav.t_s + snap && t_m < t_end - snap) {
       // Split the interval exactly at the measurement epoch (increments shared in proportion to time).
       const double lambda = (t_m - c_.nav.t_s) / (t_end - c_.nav.t_s);
       ImuIncrement part = scaled(rem, lambda);
       part.t_s = t_m;
       rem = scaled(rem, 1.0 - lambda);
       propagate_sample(part);
-    } else if (t_m >= t_end - kSplitTolerance_s && rem.dt_s > 0.0) {
+    } else if (t_m >= t_end - snap && rem.dt_s > 0.0) {
       propagate_sample(rem);
       rem.dt_s = 0.0;
     }

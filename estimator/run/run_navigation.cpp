@@ -64,7 +64,11 @@ FilterOptions options_from_kfgins(const KfGinsConfig& cfg) {
   o.use_gnss_velocity = ldv_key<bool>(cfg, "use_gnss_velocity", o.use_gnss_velocity);
   // KF-GINS's gate (reject, then force after a count) instead of the robust update.
   o.robust_update = !ldv_key<bool>(cfg, "kfgins_compatible", !o.robust_update);
-  if (ldv_key<bool>(cfg, "kfgins_compatible", false)) o.gate_measurements = false;  // KF-GINS takes every fix
+  if (ldv_key<bool>(cfg, "kfgins_compatible", false)) {
+    o.gate_measurements = false;                                   // KF-GINS takes every fix,
+    o.measurement_snap_s = 1e-3;                                   // at an IMU epoch within 1 ms of it,
+    if (!has_ldv_key(cfg, "cov_period_s")) o.cov_period_s = 1e-6;  // the covariance propagated every sample
+  }
   o.step_confirm_s = ldv_key<double>(cfg, "step_confirm_s", o.step_confirm_s);
   o.adapt_imu_noise = ldv_key<bool>(cfg, "adapt_imu_noise", o.robust_update && o.adapt_imu_noise);
   o.split_noise_adaptation = ldv_key<bool>(cfg, "split_noise_adaptation", o.split_noise_adaptation);

@@ -129,6 +129,8 @@ NavInputs load_nav_model(const NavInputArgs& a) {
   if (a.kfgins_compatible) {  // KF-GINS's update (every fix, no gate), and its alignment: body x along the course
     in.options.robust_update = false;
     in.options.gate_measurements = false;
+    in.options.measurement_snap_s = 1e-3;                                         // KF-GINS's TIME_ALIGN_ERR
+    if (!has_ldv_key(in.config, "cov_period_s")) in.options.cov_period_s = 1e-6;  // covariance every IMU sample
     in.options.adapt_imu_noise = false;
     if (!has_ldv_key(in.config, "align_hypotheses")) in.options.align_hypotheses = 1;
   }

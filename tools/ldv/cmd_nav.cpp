@@ -43,6 +43,7 @@ using namespace ldv;
 struct NavArgs {
   assess::NavInputArgs in;  // the file inputs, shared with ldv outage / diagnose (nav_input_options.hpp)
   std::string lcm_log, out;
+  std::string write_inputs;  // a folder: the inputs as the filter takes them, as KF-GINS files
   int week = -1;
   double std_rate_hz = 10.0;
   double align_speed_mps = -1.0;  // <= 0: the config's ldv.align_speed_mps
@@ -235,6 +236,19 @@ void run_lcm_log(const NavArgs& a, const KfGinsConfig& cfg, est::FilterOptions o
   }
 }
 
+// The IMU and GNSS as the filter takes them (a tagged CSV's rates integrated, the stamps' latency and the
+// calibration applied, .pos solutions converted), as KF-GINS imu.txt and gnss.txt: what another tool (KF-GINS
+// itself) needs to run on the same data side by side.
+void write_filter_inputs(const assess::NavInputs& in, const std::string& dir, bool quiet) {
+  fs::create_directories(dir);
+  const std::string imu = (fs::path(dir) / "imu.txt").string(), gnss = (fs::path(dir) / "gnss.txt").string();
+  write_kfgins_imu(imu, in.imu);
+  bool velocity = !in.gnss.empty();
+  for (const GnssFix& f : in.gnss) velocity &= f.has_velocity;
+  write_kfgins_gnss(gnss, in.gnss, velocity);
+  if (!quiet) std::fprintf(stderr, "ldv nav: the filter's inputs written: %s, %s\n", imu.c_str(), gnss.c_str());
+}
+
 void run_nav(const NavArgs& a) {
   const bool imu_given = !a.in.imu.empty() || !a.in.imu_csv.empty();
   const bool gnss_given = !a.in.gnss.empty() || !a.in.rtklib_pos.empty();
@@ -283,6 +297,7 @@ void run_nav(const NavArgs& a) {
     std::fprintf(stderr, "state layout (%d states):\n%s", filter->layout().size(), filter->layout().describe().c_str());
   }
   for (const std::string& w : assess::input_warnings(in)) std::fprintf(stderr, "ldv nav: WARNING: %s\n", w.c_str());
+  if (!a.write_inputs.empty()) write_filter_inputs(in, a.write_inputs, a.quiet);
 
   // Smoothing: the forward solution beside the smoothed one, which takes the --out name.
   const std::string forward_path = a.smooth ? cli::output_base(nav_path) + "_forward.nav" : nav_path;
@@ -343,6 +358,10 @@ void add_nav_options(CLI::App* c, const std::shared_ptr<NavArgs>& args) {
   c->add_option("--align-wait", args->align_wait_s, "with --lcm-log: host seconds the alignment waits for GNSS")
       ->check(ldv::cli::finite_range(0, 86400));
   c->add_option("--out", args->out, "output .nav (default <outputpath>/KF_GINS_Navresult.nav)");
+  c->add_option(
+      "--write-inputs", args->write_inputs,
+      "also write the IMU and GNSS as the filter takes them, as KF-GINS imu.txt and gnss.txt into this folder "
+      "(to run another tool on the same data)");
   c->add_option("--week", args->week, "GPS week written in the .nav (default ldv.week, the .pos week, or 0)")
       ->check(ldv::cli::finite_range(0, 9999));
   c->add_option("--std-rate", args->std_rate_hz, "rate of the _std.txt rows [Hz] (0: every IMU sample)")
