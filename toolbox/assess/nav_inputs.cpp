@@ -243,6 +243,22 @@ class ShiftLikelihood {
     fixes_ = n;
     return sum;
   }
+  // -2 ln L at the stamps as they are with an effect the model does not hold added (estimated by the filter on
+  // the way), the same fixes: what that effect explains instead of a lag. NaN as cost().
+  double cost_with(const std::string& effect) {
+    if (!ok_) return NAN;
+    const est::FilterOptions plain = o_;
+    o_.add.push_back(effect);
+    const bool ran = pass(0.0, nullptr);
+    o_ = plain;
+    zero_used_ = true;  // the pass at 0 is no longer the plain one
+    if (!ran) return NAN;
+    double sum = 0.0;
+    long n = 0;
+    for (const auto& [t, j] : terms_)
+      if (t >= t0_ && t <= t1_) sum += j, ++n;
+    return n == fixes_ || fixes_ < 0 ? sum : NAN;
+  }
 
  private:
   bool pass(double lag_s, est::ImuNoiseScale* noise) {
@@ -372,7 +388,7 @@ void estimate_and_remove_imu_latency(const NavInputArgs& a, bool shift_given, Na
   if (!wanted || in.imu.empty() || in.gnss.empty()) return;
   in.imu_latency = est::estimate_imu_latency(in.imu, in.gnss);
   const est::ImuLatencyEstimate& e = in.imu_latency;
-  char note[512];
+  char note[768];
   if (!e.valid) {
     std::snprintf(note, sizeof note, "; IMU latency not estimated (%d turning GNSS intervals)", e.turning_intervals);
   } else if (e.significant()) {
@@ -390,12 +406,25 @@ void estimate_and_remove_imu_latency(const NavInputArgs& a, bool shift_given, Na
     std::vector<ImuIncrement> lagged = shifted(in.imu, e.lag_s);
     const double noise_with = imu_noise_needed(in, lagged);
     ShiftLikelihood likelihood(in);
-    const double fall = likelihood.cost(0.0) - likelihood.cost(e.lag_s);  // -2 ln L without minus with
-    const bool take = noise_with < kLagNoiseGain * noise_without || fall > kLagLikelihoodGain;
+    const double cost_plain = likelihood.cost(0.0), cost_lag = likelihood.cost(e.lag_s);
+    const double fall = cost_plain - cost_lag;  // -2 ln L without minus with
+    // The lag competes with what it can be confused with (issue 47: the main job's 0.6 m forward lever arm was
+    // taken for a 50 ms lag, and the diagnosis then undid it with a time_offset): a forward lever arm moves the
+    // antenna ahead on the track as a late IMU does. Unless the lag explains the fixes better than the lever
+    // arm (estimated by the filter on the way) by as much as the 1-parameter test asks, it is not taken out:
+    // the pair is the model's to estimate (lever_arm, time_offset) and ldv diagnose's to tell apart.
+    const bool model_has_lever = [&] {
+      const auto m = est::resolve_model(in.options.model, in.options.add, in.options.drop);
+      return std::find(m.begin(), m.end(), "lever_arm") != m.end();
+    }();
+    const double cost_lever = model_has_lever ? NAN : likelihood.cost_with("lever_arm");
+    const bool lever_explains = std::isfinite(cost_lever) && !(cost_lag + kLagLikelihoodGain < cost_lever);
+    const bool take = (noise_with < kLagNoiseGain * noise_without || fall > kLagLikelihoodGain) && !lever_explains;
     if (take) {
       in.imu = std::move(lagged);
       in.imu_latency_applied = true;
     }
+    in.imu_latency_lever_explains = lever_explains;
     char why[160];
     if (e.sigma_s >= est::ImuLatencyEstimate::kMaxSigma_s)
       std::snprintf(why, sizeof why, "known by the turns to %.0f ms only", 1e3 * e.sigma_s);
@@ -408,11 +437,21 @@ void estimate_and_remove_imu_latency(const NavInputArgs& a, bool shift_given, Na
     char likelihood_said[96] = "the fixes' likelihood could not be compared (a pass failed or saw other fixes)";
     if (std::isfinite(fall))
       std::snprintf(likelihood_said, sizeof likelihood_said, "-2 ln L of the fixes falls by %.1f with it", fall);
+    char lever_said[200] = "";
+    if (std::isfinite(cost_lever))
+      std::snprintf(lever_said, sizeof lever_said,
+                    "; a lever arm instead of the lag: -2 ln L %+.1f against the lag's%s", cost_lever - cost_lag,
+                    !lever_explains                              ? ""
+                    : cost_lever < cost_lag - kLagLikelihoodGain ? ": the lever arm explains the fixes better"
+                                                                 : ": the lever arm explains the fixes as well, the "
+                                                                   "pair cannot be told apart here");
     std::snprintf(note, sizeof note,
                   "; IMU latency %.1f +- %.1f ms: %s; the filter needs %.3gx the IMU noise with it, %.3gx without, "
-                  "and %s: %s",
-                  1e3 * e.lag_s, 1e3 * e.sigma_s, why, noise_with, noise_without, likelihood_said,
-                  take ? "a lag, taken out" : "not applied (the time_offset and lever_arm effects can estimate it)");
+                  "and %s%s: %s",
+                  1e3 * e.lag_s, 1e3 * e.sigma_s, why, noise_with, noise_without, likelihood_said, lever_said,
+                  take ? "a lag, taken out"
+                       : "not applied (the time_offset and lever_arm effects can estimate it; ldv diagnose tells them "
+                         "apart where the drive allows)");
   } else {
     std::snprintf(note, sizeof note, "; IMU latency %.1f +- %.1f ms (not significant, not applied)", 1e3 * e.lag_s,
                   1e3 * e.sigma_s);

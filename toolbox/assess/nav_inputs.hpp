@@ -90,6 +90,8 @@ struct NavInputs {
   int gps_week = -1;
   est::ImuLatencyEstimate imu_latency;  // when estimated (NavInputArgs::imu_latency); applied if significant()
   bool imu_latency_applied = false;
+  // Not taken out because a forward lever arm explained the fixes as well or better (the pair is the model's).
+  bool imu_latency_lever_explains = false;
   // The latency after a filter pass with the time_offset state refined it (NavInputArgs::refine_latency_in_filter).
   struct RefinedLatency {
     bool done = false;

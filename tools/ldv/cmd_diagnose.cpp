@@ -133,10 +133,14 @@ void run_diagnose(const DiagnoseArgs& a) {
     c.unit = "ms";
     c.print_scale = 1e3;
     c.applied = loaded.imu_latency_applied;
-    char b[200];
-    std::snprintf(b, sizeof b, "IMU stamps late by %.1f +- %.1f ms (the turns' heading changes against the GNSS track); %s",
+    char b[320];
+    std::snprintf(b, sizeof b,
+                  "IMU stamps late by %.1f +- %.1f ms (the turns' heading changes against the GNSS track); %s",
                   1e3 * lag_s, 1e3 * sigma_s,
-                  c.applied ? "taken out of the stamps before the diagnosis" : "not taken out (not significant)");
+                  c.applied                           ? "taken out of the stamps before the diagnosis"
+                  : loaded.imu_latency_lever_explains ? "not taken out: a forward lever arm explains the fixes as "
+                                                        "well or better (the screening below weighs both)"
+                                                      : "not taken out (not significant)");
     c.note = b;
     d.self_calibration.insert(d.self_calibration.begin(), c);
   }
