@@ -195,6 +195,7 @@ void NavSession::decide_late_given_start(double now_s, bool at_end) {
 
 void NavSession::hand_over_readings(double up_to_s) {
   for (; !gnss_queue_.empty() && gnss_queue_.front().t_s <= up_to_s; gnss_queue_.pop_front()) {
+    if (wants_pre_start_noise()) pre_start_gnss_.push_back(gnss_queue_.front());
     filter_.add_gnss(gnss_queue_.front());
     insert_in_time_order(fixes_to_check_, gnss_queue_.front(), gnss_queue_.front().t_s);
     ++gnss_used_;
@@ -211,6 +212,7 @@ void NavSession::navigate(const ImuIncrement& imu, int week) {
     heading_check_.add_fix(fixes_to_check_.front());
   filter_.add_imu(imu);
   ++imu_used_;
+  measure_noise_while_navigating(imu);
   heading_check_.add_imu(filter_.state().q_b_n * imu.dvel_b_mps);
   if (on_epoch_) on_epoch_(filter_, week);
   if (!filter_.options().robust_update) return;
@@ -348,6 +350,7 @@ void NavSession::measure_noise_before_start() {
   const InstalledImuNoise noise = measure_installed_imu_noise(imu, pre_start_gnss_);
   pre_start_gnss_.clear();
   if (!noise.found) return;
+  noise_standstill_s_ = noise.standstill_s;
   const bool filled = filter_.fill_unset_white_noise(noise.arw_rad_per_sqrt_s, noise.vrw_mps_per_sqrt_s);
   o_.imu_noise_floor = noise.psd_scale(filter_.options().arw_rad_per_sqrt_s, filter_.options().vrw_mps_per_sqrt_s);
   o_.standstill_f_scatter_mps2 = noise.f_norm_scatter_mps2;
@@ -358,6 +361,27 @@ void NavSession::measure_noise_before_start() {
                 noise.standstill_s, o_.imu_noise_floor->gyro, o_.imu_noise_floor->accel,
                 filled ? " (a white noise configured as 0 took the standstill's)" : "");
   noise_note_ = b;
+}
+
+// A start that needed no standstill (a given or saved state) measures the IMU noise as installed over the first
+// standstill while navigating (issue 46: `ldv nav --lcm-log` of a drive starting with 60 s standing still said
+// "no standstill in the data"): once the vehicle moves off after one, or once the kept span is full.
+void NavSession::measure_noise_while_navigating(const ImuIncrement& imu) {
+  if (!wants_pre_start_noise()) return;
+  keep_pre_start(imu);
+  const bool still = (filter_.status() & kStatusZuptActive) != 0;
+  if (still && !still_since_s_) still_since_s_ = imu.t_s;
+  const bool moved_off = !still && still_since_s_ && imu.t_s - *still_since_s_ >= kMinNoiseStandstill_s;
+  if (!still) still_since_s_.reset();
+  if (!moved_off && imu.t_s - pre_start_imu_.front().t_s < kPreStartKept_s - 1.0) return;
+  measure_noise_before_start();
+  if (o_.imu_noise_floor && filter_.options().adapt_imu_noise) {
+    filter_.set_imu_noise_floor(*o_.imu_noise_floor);
+    filter_.set_standstill_f_scatter(o_.standstill_f_scatter_mps2);
+    imu_noise_floor_ = filter_.imu_noise_floor();
+  }
+  initialisation_ += noise_note_;
+  noise_note_.clear();
 }
 
 void NavSession::aligned(Alignment al) {

@@ -71,6 +71,9 @@ struct SessionOptions {
 
 class NavSession {
  public:
+  // The standstill before the start the IMU noise as installed was measured over [s] (0: none found or not looked
+  // for).
+  double noise_standstill_s() const { return noise_standstill_s_; }
   // Called after every IMU sample the filter navigated, with the GPS week the sample came with.
   using EpochSink = std::function<void(const NavFilter&, int gps_week)>;
   static constexpr double kLookahead_s = 0.5;  // readings are handed to the filter this far ahead of the IMU
@@ -145,6 +148,7 @@ class NavSession {
   void keep_pre_start(const ImuIncrement& imu);
   // The floor (and a white noise configured as 0) from a standstill before the alignment, once.
   void measure_noise_before_start();
+  void measure_noise_while_navigating(const ImuIncrement& imu);
   // position_from_fix: the position is a GNSS fix's moved to the IMU (aligned, warm start), not a given one.
   void start(const NavState& s, const NavStd& sd, const std::string& how, const std::optional<Vec3>& gyro_bias_seed,
              bool position_from_fix);
@@ -166,6 +170,9 @@ class NavSession {
   std::deque<ImuIncrement> pre_start_imu_;  // the data the aligner took, for measure_noise_before_start
   std::vector<GnssFix> pre_start_gnss_;
   bool noise_measured_ = false;
+  double noise_standstill_s_ = 0.0;      // the standstill the noise was measured over (0: none found)
+  std::optional<double> still_since_s_;  // navigating: the current standstill began (measure_noise_while_navigating)
+  static constexpr double kMinNoiseStandstill_s = 10.0;
   std::string noise_note_;  // what measure_noise_before_start found, for the initialisation line
   std::deque<QueuedImu> imu_queue_;
   std::deque<GnssFix> gnss_queue_;          // fixes not yet handed over, in time order

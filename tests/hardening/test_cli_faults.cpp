@@ -376,6 +376,9 @@ TEST(LcmLogFaults, GivenA2GbLengthInADrivesLog_ThenExportAndNavReadEverythingAft
                            120.0);
   ASSERT_EQ(nav.exit_code, 0) << nav.output;
   EXPECT_NE(nav.output.find(std::to_string(sim.imu.size() - 1) + " IMU"), std::string::npos) << nav.output;
+  // Issue 46 (5): the drive starts with 60 s standing still; the summary said "no standstill in the data".
+  EXPECT_EQ(nav.output.find("no standstill"), std::string::npos) << nav.output;
+  EXPECT_NE(nav.output.find("s standstill in the data showed"), std::string::npos) << nav.output;
   double last_sow = 0.0;
   {
     std::ifstream in(dir / "nav" / "from_log.nav");

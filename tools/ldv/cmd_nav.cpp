@@ -218,7 +218,7 @@ void run_lcm_log(const NavArgs& a, const KfGinsConfig& cfg, est::FilterOptions o
         sum.imu_messages, sum.gnss_messages, sum.wheel_messages, sum.malformed, sum.other_messages,
         sum.corrupt_log_events);
     print_summary("replayed through FusionEngine", n, t0, t1, sum.gnss_messages, sum.initialisation, engine.filter(),
-                  elapsed, nav_path, 0.0);
+                  elapsed, nav_path, engine.session().noise_standstill_s());
     if (const long late = engine.filter().faults().late_dropped; late > 0)
       std::fprintf(stderr,
                    "ldv nav: WARNING: %ld measurements arrived later than the IMU history kept (--history %.1f s) and "
