@@ -25,6 +25,9 @@ class FileSource : public ByteSource {
   int fd_ = -1;
   bool finished_ = false;
   bool reported_missing_ = false;
+  bool fifo_ = false;  // a FIFO: no end of file, a writer may come again
+  double reopen_at_s_ = -1e300;
+  static constexpr double kFifoReopen_s = 0.2;
 };
 
 }  // namespace ldv::io

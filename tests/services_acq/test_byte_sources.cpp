@@ -1,13 +1,15 @@
 // The byte sources: a serial port (through a pty, raw mode), a TCP client that reconnects after
 // the server drops it, a file that finishes. Loopback only.
-#include <gtest/gtest.h>
-
 #include <arpa/inet.h>
+#include <fcntl.h>
+#include <gtest/gtest.h>
 #include <netinet/in.h>
 #include <pty.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <array>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -106,4 +108,36 @@ TEST(FileSource, GivenAFile_ThenAllBytesThenFinished) {
   EXPECT_TRUE(f.finished());
   EXPECT_EQ(f.fd(), -1);
   std::filesystem::remove(path);
+}
+
+// Issue 46 (6): a service's file input that is a folder read as "end of file after 0 bytes", and a FIFO with no
+// writer yet held the service in open() before READY. A folder is said for what it is and retried; a FIFO opens at
+// once, hands out what a writer sends, and waits for the next writer instead of ending.
+TEST(FileSource, GivenAFolderOrAFifo_ThenNothingBlocksAndNothingEndsInSilence) {
+  const auto dir = std::filesystem::temp_directory_path() / ("ldv_file_source_dir_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  FileSource folder(dir.string());
+  folder.maintain(0.0);
+  EXPECT_FALSE(folder.finished());
+  EXPECT_EQ(folder.counters().opens, 0u);
+  EXPECT_GE(folder.counters().open_failures, 1u);
+
+  const auto fifo = dir / "stream.fifo";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  FileSource source(fifo.string());
+  const auto t0 = std::chrono::steady_clock::now();
+  source.maintain(0.0);  // no writer: must not block
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::milliseconds(500));
+  EXPECT_EQ(source.counters().opens, 1u);
+  const int writer = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
+  ASSERT_GE(writer, 0);
+  ASSERT_EQ(::write(writer, "abcdef", 6), 6);
+  ::close(writer);
+  std::array<std::uint8_t, 64> buffer{};
+  std::size_t got = 0;
+  for (int i = 0; i < 10 && got < 6; ++i) got += source.read_some(buffer, 0.0);
+  EXPECT_EQ(got, 6u);
+  source.read_some(buffer, 0.0);  // the writer is gone
+  EXPECT_FALSE(source.finished()) << "a FIFO has no end of file";
+  std::filesystem::remove_all(dir);
 }
