@@ -761,9 +761,9 @@ void NavFilter::adapt_imu_noise(const InnovationRecord& rec) {
 }
 
 void NavFilter::adapt_noise(const InnovationRecord& rec, const Eigen::MatrixXd& R_used, int gnss_class) {
-  // The prediction's part of S (the robust update's S carries its R inflated by rec.noise_scale); the innovation
-  // capped at the gate, so that an outlier the robust update discounts moves the factors little.
-  const Eigen::MatrixXd A = rec.S - rec.noise_scale * R_used;
+  // The prediction's part of S (rec.S is H P H^T + R before any robust inflation); the innovation capped at the
+  // gate, so that an outlier the robust update discounts moves the factors little.
+  const Eigen::MatrixXd A = rec.S - R_used;
   const double gate = gate_threshold(static_cast<int>(rec.innovation.size()));
   const double cap = rec.nis > gate ? std::sqrt(gate / rec.nis) : 1.0;
   c_.noise_adaptation.add_fix(c_.nav.t_s, A, R_used, rec.innovation * cap, gnss_class);
