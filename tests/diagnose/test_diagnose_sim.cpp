@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "common/io/input_error.hpp"
@@ -167,5 +168,37 @@ TEST(DiagnoseSim, GivenATruthThatEndsEarly_ThenTheReportSaysWhatItCovered) {
   EXPECT_GT(part.truth_before.compared_epochs, 0);
   EXPECT_LT(part.truth_before.compared_epochs, part.truth_before.run_epochs);
   EXPECT_FALSE(part.truth_before.coverage_note.empty());
+}
+}  // namespace ldv::diag
+
+namespace ldv::diag {
+// Issue 47, the contract: `ldv diagnose --json` lists {name: gnss_noise, estimate, sigma, applied} in
+// self_calibration[]: the factor the GNSS position innovations call for on the stated variance, per solution quality,
+// estimated apart from the IMU's. A drive whose gnss.txt states a std 5x too small: the simulator's RTK error is half
+// white, so fix-to-fix differences show 12.5x the stated variance.
+TEST(DiagnoseSim, GivenAGnssStdStatedFiveTimesTooSmall_ThenTheSelfCalibrationReportsTheGnssNoiseFactor) {
+  testing::SimCase c;
+  c.duration_s = 300.0;
+  c.gnss_rate_hz = 5.0;
+  c.seed = 47;
+  const sim::SimResult r = testing::simulate(c);
+  DiagnoseInputs in = testing::inputs(r);
+  for (GnssFix& f : in.gnss) f.pos_std_ned_m /= 5.0;
+  DiagnoseOptions o = testing::options(r, "kfgins21");
+  o.max_added = 0;
+  const Diagnosis d = diagnose(in, o);
+  const SelfCalibration* gnss = nullptr;
+  for (const SelfCalibration& s : d.self_calibration)
+    if (s.name == "gnss_noise") gnss = &s;
+  ASSERT_NE(gnss, nullptr);
+  ASSERT_EQ(gnss->estimate_si.size(), 1);  // fixed solutions only
+  EXPECT_NEAR(gnss->estimate_si(0), 12.5, 0.3 * 12.5);
+  EXPECT_FALSE(gnss->applied);
+  const std::string json_path = (std::filesystem::temp_directory_path() / "ldv_gnss_noise.json").string();
+  write_json(d, json_path);
+  std::ifstream json(json_path);
+  std::stringstream text;
+  text << json.rdbuf();
+  EXPECT_NE(text.str().find("\"name\": \"gnss_noise\""), std::string::npos) << text.str().substr(0, 400);
 }
 }  // namespace ldv::diag

@@ -10,6 +10,7 @@
 
 #include "common/io/input_error.hpp"
 #include "estimator/calibrate/installed_imu_noise.hpp"
+#include "estimator/filter/nav_filter.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "toolbox/diagnose/filter_run.hpp"
 
@@ -89,6 +90,24 @@ void measure_imu_noise(const DiagnoseInputs& in, est::FilterOptions& model, Diag
   d.imu_noise_applied = true;
 }
 
+// The GNSS noise the innovations call for, per solution quality, estimated apart from the IMU's (issue 47): a pass
+// with the split noise adaptation. Reported, not applied.
+void measure_gnss_noise(const DiagnoseInputs& in, const est::FilterOptions& model, Diagnosis& d) {
+  est::FilterOptions o = model;
+  o.adapt_imu_noise = o.split_noise_adaptation = true;
+  try {
+    est::NavFilter filter(o);
+    est::run_navigation(in.imu, in.gnss, in.cfg, filter, est::RunCallbacks{}, nullptr, &in.others);
+    ++d.filter_runs;
+    for (int c = 0; c < est::NoiseAdaptation::kGnssClasses; ++c) {
+      d.gnss_noise_scale[c] = filter.gnss_noise_scale(c);
+      d.gnss_noise_fixes[c] = filter.noise_adaptation().gnss_fixes(c);
+    }
+  } catch (const std::exception&) {
+    // the diagnosis's own runs report what is wrong with the inputs
+  }
+}
+
 // The noise as installed and the turn-on gyro bias the start took out: estimated by the system, not by the model.
 void add_self_calibration_findings(Diagnosis& d) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -104,6 +123,27 @@ void add_self_calibration_findings(Diagnosis& d) {
                   c.applied ? "the diagnosis ran with it" : "within the configuration's, not applied");
     c.note = b;
     d.self_calibration.push_back(c);
+  }
+  {
+    std::vector<double> factors;
+    std::string classes;
+    for (int c = 0; c < est::NoiseAdaptation::kGnssClasses; ++c)
+      if (d.gnss_noise_fixes[c] > 0) {
+        factors.push_back(d.gnss_noise_scale[c]);
+        classes += std::string(classes.empty() ? "" : ", ") + est::NoiseAdaptation::gnss_class_name(c);
+      }
+    if (!factors.empty()) {
+      SelfCalibration c;
+      c.name = "gnss_noise";
+      c.estimate_si = Eigen::Map<const Eigen::VectorXd>(factors.data(), static_cast<Eigen::Index>(factors.size()));
+      c.sigma_si = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(factors.size()), nan);
+      c.unit = "x the stated position variance (" + classes + ")";
+      c.applied = false;
+      c.note =
+          "from the GNSS position innovations, apart from the IMU's noise (fix-to-fix differences); the "
+          "diagnosis judges the configured model";
+      d.self_calibration.push_back(c);
+    }
   }
   const Vec3 seed = d.before.summary.gyro_bias_seed_rad_s;
   if (!seed.isZero()) {
@@ -149,6 +189,7 @@ Diagnosis diagnose(const DiagnoseInputs& in, const DiagnoseOptions& opt) {
   est::FilterOptions current = opt.model;
   current.adapt_imu_noise = false;  // the model check judges the model as configured
   if (opt.measure_imu_noise) measure_imu_noise(in, current, d);
+  if (opt.measure_imu_noise) measure_gnss_noise(in, current, d);
   FilterRun current_run;
   for (int step = 0; step <= opt.max_added; ++step) {
     DiagnosisStep st;
