@@ -137,7 +137,7 @@ Periodogram periodogram_of_block_differences(const PhaseSeries& s, long m) {
   return p;
 }
 
-struct Model {
+struct WhittleModel {
   std::vector<ModelTerm> terms;  // estimated
   double gm_t_s = 0.0;
   // The finest time scale at which a GM's shape can be told from white noise (gm_resolution); its T is
@@ -147,7 +147,7 @@ struct Model {
   Eigen::VectorXd fixed;    // density of held terms: none in the fit; a profile holds its term here
 };
 
-void set_densities(Model& mod, const Periodogram& p) {
+void set_densities(WhittleModel& mod, const Periodogram& p) {
   const long nb = static_cast<long>(p.nu.size());
   mod.density.resize(nb, mod.terms.size());
   for (long b = 0; b < nb; ++b) {
@@ -158,12 +158,12 @@ void set_densities(Model& mod, const Periodogram& p) {
 }
 
 struct Solution {
-  Eigen::VectorXd c;  // squared coefficients of Model::terms
+  Eigen::VectorXd c;  // squared coefficients of WhittleModel::terms
   double log_likelihood = -std::numeric_limits<double>::infinity();
   int iterations = 0;
 };
 
-Eigen::VectorXd model_density(const Model& mod, const Eigen::VectorXd& c) {
+Eigen::VectorXd model_density(const WhittleModel& mod, const Eigen::VectorXd& c) {
   Eigen::VectorXd s = mod.fixed + mod.density * c;
   const double floor = std::max(1e-12 * s.maxCoeff(), std::numeric_limits<double>::min());
   return s.cwiseMax(floor);
@@ -181,7 +181,7 @@ double whittle_log_likelihood(const Periodogram& p, const Eigen::VectorXd& s) {
 // A step that lowers the likelihood is halved (a convex combination stays non-negative): undamped, the
 // scoring flipped between two points on the paper's HG1900 accelerometers (K at 0, then at 5e-14, and
 // back) and ran all 200 iterations in 5 % of the calls of a 16 h record.
-Solution maximise_at_fixed_shape(const Model& mod, const Periodogram& p, Eigen::VectorXd c) {
+Solution maximise_at_fixed_shape(const WhittleModel& mod, const Periodogram& p, Eigen::VectorXd c) {
   Solution sol;
   const Eigen::VectorXd ordinates = Eigen::Map<const Eigen::VectorXd>(p.mean_ordinate.data(), p.nu.size());
   const Eigen::VectorXd counts = Eigen::Map<const Eigen::VectorXd>(p.count.data(), p.nu.size());
@@ -237,7 +237,7 @@ double golden_section_max(const F& f, double a, double z, int iterations, double
 struct LnTRange {
   double lo = 0.0, hi = 0.0;
 };
-LnTRange gm_search_range(const Model& mod, const Periodogram& p) {
+LnTRange gm_search_range(const WhittleModel& mod, const Periodogram& p) {
   const double lo = std::log(gm_min_time_constant(mod.gm_resolution_s));
   return {lo, std::max(lo, std::log(p.blocks * p.tau_b / 3.0))};
 }
@@ -262,7 +262,7 @@ LnTMaximum grid_then_golden_max(const F& f, LnTRange range, int grid, int iterat
 }
 
 // Profile likelihood over ln T: a log grid, then golden section around its best point.
-Solution maximise(Model& mod, const Periodogram& p, const Eigen::VectorXd& start, int gm_index) {
+Solution maximise(WhittleModel& mod, const Periodogram& p, const Eigen::VectorXd& start, int gm_index) {
   if (gm_index < 0) {
     set_densities(mod, p);
     return maximise_at_fixed_shape(mod, p, start);
@@ -280,7 +280,7 @@ Solution maximise(Model& mod, const Periodogram& p, const Eigen::VectorXd& start
 
 // Inverse Fisher information of the squared coefficients in `idx` (and ln T last when the
 // Gauss-Markov term is among them with c > 0): sum count g g^T / S^2, g = dS/dparameter.
-Eigen::MatrixXd fisher_covariance(const Model& mod, const Periodogram& p, const Eigen::VectorXd& c,
+Eigen::MatrixXd fisher_covariance(const WhittleModel& mod, const Periodogram& p, const Eigen::VectorXd& c,
                                   const std::vector<int>& idx, int gm_index) {
   const bool with_shape = gm_index >= 0 && c(gm_index) > 0 && std::find(idx.begin(), idx.end(), gm_index) != idx.end();
   const int q = static_cast<int>(idx.size()) + (with_shape ? 1 : 0);
@@ -313,9 +313,9 @@ Eigen::MatrixXd fisher_covariance(const Model& mod, const Periodogram& p, const 
 // maximum over the coefficients at that T) is within `drop` of the maximum. A weak GM's profile is flat or has
 // two humps; the Fisher sigma at the higher hump then says nothing about the other (the paper's HG1900 gyros:
 // T inside T +- 1.96 sigma in 9-13 of 20 records). Ends at the search range when the profile never falls that far.
-LnTRange time_constant_interval(const Model& mod, const Periodogram& p, const Solution& best, double drop,
+LnTRange time_constant_interval(const WhittleModel& mod, const Periodogram& p, const Solution& best, double drop,
                                 LnTRange range) {
-  Model at_t = mod;
+  WhittleModel at_t = mod;
   const double target = best.log_likelihood - drop;
   auto above = [&](double ln_t) {
     at_t.gm_t_s = std::exp(ln_t);
@@ -345,9 +345,9 @@ LnTRange time_constant_interval(const Model& mod, const Periodogram& p, const So
 
 // Profile likelihood of term j's squared coefficient: the maximum over the other terms (and the
 // Gauss-Markov T, searched over `ln_t`, its own interval a little widened) with c_j held at cj.
-double profile_log_likelihood(const Model& mod, const Periodogram& p, const Solution& best, int j, double cj,
+double profile_log_likelihood(const WhittleModel& mod, const Periodogram& p, const Solution& best, int j, double cj,
                               LnTRange ln_t) {
-  Model sub;
+  WhittleModel sub;
   std::vector<int> others;
   for (int i = 0; i < static_cast<int>(mod.terms.size()); ++i) {
     if (i != j) sub.terms.push_back(mod.terms[i]), others.push_back(i);
@@ -376,7 +376,7 @@ double profile_log_likelihood(const Model& mod, const Periodogram& p, const Solu
 // the maximum. Unlike the Fisher interval, it does not shrink with a low estimate (the
 // information about a variance is evaluated at that variance), which matters for a term seen
 // in a handful of ordinates, like K in a few hours of a tactical gyro.
-std::pair<double, double> profile_interval(const Model& mod, const Periodogram& p, const Solution& best, int j,
+std::pair<double, double> profile_interval(const WhittleModel& mod, const Periodogram& p, const Solution& best, int j,
                                            double drop, double sigma_c, LnTRange ln_t) {
   const double target = best.log_likelihood - drop;
   // Not finite counts as below: a failed profile is no evidence for the value.
@@ -416,7 +416,8 @@ std::pair<double, double> profile_interval(const Model& mod, const Periodogram& 
 // sum h_j h_k gamma(j - k) / (sum h)^2: a random walk's d is white at frequency 0 (K^2 tau_b
 // sum h^2); every other term's d is a difference, which summation by parts turns into the block
 // means weighted by the taper's steps (S_ybar near frequency 0 times sum (dh)^2).
-void ramp_estimate(const Model& mod, const Periodogram& p, const Eigen::VectorXd& c, double& r, double& sigma_r) {
+void ramp_estimate(const WhittleModel& mod, const Periodogram& p, const Eigen::VectorXd& c, double& r,
+                   double& sigma_r) {
   const double nu_edge = 1.0 / static_cast<double>(p.taper.edge), s_edge = std::sin(M_PI * nu_edge);
   double var = 0.0;
   for (size_t j = 0; j < mod.terms.size(); ++j) {
@@ -474,7 +475,7 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
   const long m = std::max(1L, std::lround(block_s / s.tau0_s));
   const Periodogram p = periodogram_of_block_differences(s, m);
 
-  Model mod;
+  WhittleModel mod;
   // Q is estimated with the others, not held at the curve fit's value. Where it is weak against N (3-5 % of N's
   // Allan deviation at tau0, the paper's 3DM-GX2 accelerometer X: the record bounds it to 2.7x its value) any
   // estimate of Q is 0 or several times the truth, and N trades against it. At Q held, N's interval, even widened
@@ -537,7 +538,7 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
     const double white = sol.c(n_term - mod.terms.begin()) + 2.0 * sol.c(gm_index) * mod.gm_t_s;
     const double resolution = gm_resolution(p, q_density(q_index >= 0 ? sol.c(q_index) : 0.0), white);
     if (resolution > mod.gm_resolution_s && mod.gm_t_s <= resolution / M_PI) {
-      Model refit = mod;  // maximise moves T and the densities: kept only with a finite maximum
+      WhittleModel refit = mod;  // maximise moves T and the densities: kept only with a finite maximum
       refit.gm_resolution_s = resolution;
       Solution again = maximise(refit, p, start, gm_index);
       if (again.c.allFinite() && std::isfinite(again.log_likelihood)) mod = std::move(refit), sol = std::move(again);
@@ -548,7 +549,7 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
   // bound, the upper end of its interval from its profile over T).
   const double gm_t_min = gm_min_time_constant(mod.gm_resolution_s);
   struct FoldedGm {
-    Model with_gm;         // the model with the GM in it, at the floor's T, for its sigma's profile
+    WhittleModel with_gm;  // the model with the GM in it, at the floor's T, for its sigma's profile
     Solution at_zero;      // the folded fit as a solution of that model (GM at 0)
     int index = -1;        // the GM's term in with_gm
     double sigma_c = 0.0;  // the Fisher sigma of its squared coefficient there
@@ -556,7 +557,7 @@ NoiseFit whittle_fit(const PhaseSeries& s, const NoiseFit& curve, const FitOptio
   std::optional<FoldedGm> folded_gm;
   if (gm_index >= 0 && sol.c(gm_index) > 0 && gm_time_constant_at_bound(mod.gm_t_s, mod.gm_resolution_s) &&
       n_in_model) {
-    Model without = mod;
+    WhittleModel without = mod;
     without.terms.erase(without.terms.begin() + gm_index);
     Eigen::VectorXd start_without(without.terms.size());
     for (int j = 0, i = 0; j < static_cast<int>(mod.terms.size()); ++j)
@@ -721,7 +722,7 @@ RelativeBounds whittle_cramer_rao(const NoiseLevels& truth, double tau0_s, long 
   // The taper's variance factor depends on its shape only (1.12 beyond a few hundred blocks).
   p.taper.variance_factor = split_cosine_bell_sums(std::min(n, 100000L)).variance_factor;
   bin_frequencies(n, p, [](long, long) { return 0.0; });
-  Model mod;
+  WhittleModel mod;
   std::vector<double> c;
   int gm_index = -1;
   auto add = [&](ModelTerm t, double level) {
