@@ -31,6 +31,14 @@ T ldv_key(const KfGinsConfig& cfg, const char* key, T fallback) {
 
 double ldv_number(const KfGinsConfig& cfg, const char* key, double fallback) { return ldv_key<double>(cfg, key, fallback); }
 
+void make_kfgins_compatible(FilterOptions& o, const KfGinsConfig& cfg) {
+  o.robust_update = false;
+  o.adapt_imu_noise = false;
+  o.gate_measurements = false;
+  o.measurement_snap_s = 1e-3;
+  if (!has_ldv_key(cfg, "cov_period_s")) o.cov_period_s = 1e-6;
+}
+
 FilterOptions options_from_kfgins(const KfGinsConfig& cfg) {
   FilterOptions o;
   const KfGinsImuNoise& n = cfg.imu_noise;
@@ -62,13 +70,7 @@ FilterOptions options_from_kfgins(const KfGinsConfig& cfg) {
   o.cov_period_s = ldv_key<double>(cfg, "cov_period_s", o.cov_period_s);
   o.gate_probability = ldv_key<double>(cfg, "gate_probability", o.gate_probability);
   o.use_gnss_velocity = ldv_key<bool>(cfg, "use_gnss_velocity", o.use_gnss_velocity);
-  // KF-GINS's gate (reject, then force after a count) instead of the robust update.
-  o.robust_update = !ldv_key<bool>(cfg, "kfgins_compatible", !o.robust_update);
-  if (ldv_key<bool>(cfg, "kfgins_compatible", false)) {
-    o.gate_measurements = false;                                   // KF-GINS takes every fix,
-    o.measurement_snap_s = 1e-3;                                   // at an IMU epoch within 1 ms of it,
-    if (!has_ldv_key(cfg, "cov_period_s")) o.cov_period_s = 1e-6;  // the covariance propagated every sample
-  }
+  if (ldv_key<bool>(cfg, "kfgins_compatible", false)) make_kfgins_compatible(o, cfg);
   o.step_confirm_s = ldv_key<double>(cfg, "step_confirm_s", o.step_confirm_s);
   o.adapt_imu_noise = ldv_key<bool>(cfg, "adapt_imu_noise", o.robust_update && o.adapt_imu_noise);
   o.split_noise_adaptation = ldv_key<bool>(cfg, "split_noise_adaptation", o.split_noise_adaptation);

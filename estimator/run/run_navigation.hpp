@@ -21,6 +21,10 @@ namespace ldv::est {
 //   [roll, pitch, yaw] (coarse IMU-in-vehicle rotation), nhc_std_mps, odometer_std_mps,
 //   odometer_lever_arm_m [x, y, z] (body axes), odometer_scale. Throws InputError (file, key) on a wrong type.
 FilterOptions options_from_kfgins(const KfGinsConfig& cfg);
+// KF-GINS fix by fix (ldv.kfgins_compatible, --kfgins-compatible): its gate-free update of every fix, a fix within
+// 1 ms of an IMU epoch applied there (TIME_ALIGN_ERR), the covariance propagated every sample (unless the
+// configuration sets ldv.cov_period_s), no robust update and no noise adaptation.
+void make_kfgins_compatible(FilterOptions& o, const KfGinsConfig& cfg);
 // A number from the `ldv:` section, or `fallback` when absent; InputError (file, line, key) on a wrong type.
 double ldv_number(const KfGinsConfig& cfg, const char* key, double fallback);
 

@@ -128,6 +128,13 @@ TEST(ImuNoiseAdaptation, GyroAndAccelVibrationMeasuredApartKeepTheAttitudeConsis
 
 namespace ldv::est {
 namespace {
+// The filter over the whole simulated drive (the simulator's configuration, to the end of the data).
+void run_to_end(const sim::SimResult& s, NavFilter& f) {
+  KfGinsConfig cfg = s.kfgins;
+  cfg.end_time_s = -1;
+  run_navigation(s.imu, s.gnss, cfg, f, RunCallbacks{});
+}
+
 // Issue 47, item 3: a consumer-MEMS drive (900 s, 5 Hz RTK, two 30 s outages) whose gnss.txt states a std 5x
 // smaller than the noise in it: the one NIS factor on the IMU ran to its 1e4 cap and the mean outage-end drift went
 // from 19 m (std stated right) to 254 m. With the GNSS and IMU noise estimated apart
@@ -151,9 +158,7 @@ TEST(SplitNoiseAdaptation, GivenTheGnssStdStatedFiveTimesTooSmall_ThenTheGnssFac
 
   const auto factors = [](const sim::SimResult& s, const FilterOptions& o) {
     NavFilter f(o);
-    KfGinsConfig cfg = s.kfgins;
-    cfg.end_time_s = -1;
-    run_navigation(s.imu, s.gnss, cfg, f, RunCallbacks{});
+    run_to_end(s, f);
     return std::pair{f.imu_noise_scale(), f.gnss_noise_scale()};
   };
   const auto [imu_small, gnss_small] = factors(stated_small, split);
@@ -202,9 +207,7 @@ TEST(SplitNoiseAdaptation, GivenFloatSegmentsTenTimesNoisierThanStated_ThenTheir
   FilterOptions o = options_from_kfgins(s.kfgins);
   o.split_noise_adaptation = true;
   NavFilter f(o);
-  KfGinsConfig cfg = s.kfgins;
-  cfg.end_time_s = -1;
-  run_navigation(s.imu, s.gnss, cfg, f, RunCallbacks{});
+  run_to_end(s, f);
   std::printf("[ info ] float factor %.1f (expected ~100.5), fixed %.2f, IMU %.2f\n", f.gnss_noise_scale(1),
               f.gnss_noise_scale(0), f.imu_noise_scale());
   EXPECT_NEAR(f.gnss_noise_scale(1), 100.5, 0.3 * 100.5);

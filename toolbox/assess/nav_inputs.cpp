@@ -126,12 +126,8 @@ NavInputs load_nav_model(const NavInputArgs& a) {
     in.config.output_path = ".";
   }
   if (a.lever.size() == 3) in.options.lever_arm.init = Vec3(a.lever[0], a.lever[1], a.lever[2]);
-  if (a.kfgins_compatible) {  // KF-GINS's update (every fix, no gate), and its alignment: body x along the course
-    in.options.robust_update = false;
-    in.options.gate_measurements = false;
-    in.options.measurement_snap_s = 1e-3;                                         // KF-GINS's TIME_ALIGN_ERR
-    if (!has_ldv_key(in.config, "cov_period_s")) in.options.cov_period_s = 1e-6;  // covariance every IMU sample
-    in.options.adapt_imu_noise = false;
+  if (a.kfgins_compatible) {  // KF-GINS's update, and its alignment: body x along the course
+    est::make_kfgins_compatible(in.options, in.config);
     if (!has_ldv_key(in.config, "align_hypotheses")) in.options.align_hypotheses = 1;
   }
   if (!a.aids.empty()) in.options.aids.enabled = a.aids;
@@ -232,6 +228,23 @@ class ShiftLikelihood {
     const bool reuse = have_zero_ && lag_s == 0.0 && !zero_used_;
     if (reuse) zero_used_ = true;
     if (!reuse && !pass(lag_s, nullptr)) return NAN;
+    return summed_terms();
+  }
+  // -2 ln L at the stamps as they are with an effect the model does not hold added (estimated by the filter on
+  // the way), the same fixes: what that effect explains instead of a lag. NaN as cost().
+  double cost_with(const std::string& effect) {
+    if (!ok_) return NAN;
+    const est::FilterOptions plain = o_;
+    o_.add.push_back(effect);
+    const bool ran = pass(0.0, nullptr);
+    o_ = plain;
+    zero_used_ = true;  // the pass at 0 is no longer the plain one
+    return ran ? summed_terms() : NAN;
+  }
+
+ private:
+  // The last pass's -2 ln L over the compared span; NaN when it saw other fixes than the first pass.
+  double summed_terms() {
     double sum = 0.0;
     long n = 0;
     for (const auto& [t, j] : terms_)
@@ -243,24 +256,6 @@ class ShiftLikelihood {
     fixes_ = n;
     return sum;
   }
-  // -2 ln L at the stamps as they are with an effect the model does not hold added (estimated by the filter on
-  // the way), the same fixes: what that effect explains instead of a lag. NaN as cost().
-  double cost_with(const std::string& effect) {
-    if (!ok_) return NAN;
-    const est::FilterOptions plain = o_;
-    o_.add.push_back(effect);
-    const bool ran = pass(0.0, nullptr);
-    o_ = plain;
-    zero_used_ = true;  // the pass at 0 is no longer the plain one
-    if (!ran) return NAN;
-    double sum = 0.0;
-    long n = 0;
-    for (const auto& [t, j] : terms_)
-      if (t >= t0_ && t <= t1_) sum += j, ++n;
-    return n == fixes_ || fixes_ < 0 ? sum : NAN;
-  }
-
- private:
   bool pass(double lag_s, est::ImuNoiseScale* noise) {
     terms_.clear();
     est::RunCallbacks cb;

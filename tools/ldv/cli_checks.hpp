@@ -70,21 +70,39 @@ inline void refuse_non_finite_numbers(CLI::App& app) {
   for (CLI::App* sub : app.get_subcommands({})) refuse_non_finite_numbers(*sub);
 }
 
+// Calls visit(option, "ldv sub") for every option of every command and subcommand.
+template <typename Visit>
+void for_each_option(const CLI::App& app, const std::string& path, const Visit& visit) {
+  for (const CLI::Option* o : app.get_options()) visit(*o, path);
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+    for_each_option(*sub, path + " " + sub->get_name(), visit);
+}
+
+// Whether an option carries a validator of this name (CLI11 2.1 answers by throwing).
+inline bool has_validator(const CLI::Option& o, const std::string& name) {
+  try {
+    const_cast<CLI::Option&>(o).get_validator(name);
+    return true;
+  } catch (const CLI::OptionNotFound&) {
+    return false;
+  }
+}
+
 // Options that take a number but carry no bounds (finite_range, finite_positive, CLI::Range or checked_where_used): a
 // number a user can give is checked where it is given (issue 46: `--week 99999999`, `calib static --height-m` reached
 // the work unchecked). `ldv help --unbounded-numbers` lists them; the default suite requires the list to be empty.
-inline std::vector<std::string> unbounded_number_options(const CLI::App& app, const std::string& path = "ldv") {
+inline std::vector<std::string> unbounded_number_options(const CLI::App& app) {
   std::vector<std::string> found;
-  for (const CLI::Option* o : app.get_options()) {
-    const std::string type = o->get_type_name();
-    const bool takes_number = o->get_type_size() > 0 && (type.rfind("FLOAT", 0) == 0 || type.rfind("INT", 0) == 0 ||
-                                                         type.rfind("UINT", 0) == 0 || type.rfind("NUMBER", 0) == 0);
-    if (!takes_number) continue;
+  for_each_option(app, "ldv", [&](const CLI::Option& o, const std::string& path) {
+    const std::string type = o.get_type_name();
+    const bool takes_number = o.get_type_size() > 0 && (type.rfind("FLOAT", 0) == 0 || type.rfind("INT", 0) == 0 ||
+                                                        type.rfind("UINT", 0) == 0 || type.rfind("NUMBER", 0) == 0);
+    if (!takes_number) return;
     bool bounded = false;
     for (int i = 0;; ++i) {
       const CLI::Validator* v = nullptr;
       try {
-        v = const_cast<CLI::Option*>(o)->get_validator(i);
+        v = const_cast<CLI::Option&>(o).get_validator(i);
       } catch (const CLI::OptionNotFound&) {
         break;
       }
@@ -92,29 +110,18 @@ inline std::vector<std::string> unbounded_number_options(const CLI::App& app, co
       bounded |= v->get_name() == "FINITE_RANGE" || v->get_name() == "FINITE_POSITIVE" ||
                  v->get_name() == "CHECKED_WHERE_USED" || v->get_description().find(" in [") != std::string::npos;
     }
-    if (!bounded) found.push_back(path + " " + o->get_name());
-  }
-  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
-    auto more = unbounded_number_options(*sub, path + " " + sub->get_name());
-    found.insert(found.end(), more.begin(), more.end());
-  }
+    if (!bounded) found.push_back(path + " " + o.get_name());
+  });
   return found;
 }
 
 // The options marked checked_where_used(), as "ldv sub --option VALUES" (VALUES: how many numbers it expects).
-inline std::vector<std::string> checked_where_used_options(const CLI::App& app, const std::string& path = "ldv") {
+inline std::vector<std::string> checked_where_used_options(const CLI::App& app) {
   std::vector<std::string> found;
-  for (const CLI::Option* o : app.get_options()) {
-    try {
-      const_cast<CLI::Option*>(o)->get_validator("CHECKED_WHERE_USED");
-      found.push_back(path + " " + o->get_name() + " " + std::to_string(std::max(1, o->get_expected_min())));
-    } catch (const CLI::OptionNotFound&) {
-    }
-  }
-  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
-    auto more = checked_where_used_options(*sub, path + " " + sub->get_name());
-    found.insert(found.end(), more.begin(), more.end());
-  }
+  for_each_option(app, "ldv", [&](const CLI::Option& o, const std::string& path) {
+    if (has_validator(o, "CHECKED_WHERE_USED"))
+      found.push_back(path + " " + o.get_name() + " " + std::to_string(std::max(1, o.get_expected_min())));
+  });
   return found;
 }
 

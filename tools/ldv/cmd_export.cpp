@@ -45,6 +45,20 @@ void add_export_command(CLI::App& app) {
     double last_nav_t = -1e300, last_tspi_t = -1e300;
     // KF-GINS files count seconds of the first week on past 604800 after a rollover: in time order across it.
     ContinuousGpsTime gps_time;
+    // A NAV or TSPI row, into its file (opened at the first), only after the row written last: a file's times only
+    // increase, and overlapping logs repeat epochs already written.
+    const auto write_row = [&](std::unique_ptr<NavWriter>& writer, const char* name, double& last_t, long& rows,
+                               const NavRecord& r) {
+      if (!writer) writer = std::make_unique<NavWriter>((fs::path(out_dir) / name).string());
+      const double t = gps_time.seconds(r.week, r.sow_s);
+      if (!(t > last_t)) {
+        ++rows_not_advancing;
+        return;
+      }
+      last_t = t;
+      writer->write(r);
+      ++rows;
+    };
     for (const std::string& path : logs) {
       LcmLogReader log(path);
       LcmLogEvent ev;
@@ -72,32 +86,14 @@ void add_export_command(CLI::App& app) {
             ++malformed;
             continue;
           }
-          if (!nav) nav = std::make_unique<NavWriter>((fs::path(out_dir) / "nav.nav").string());
-          const NavRecord r = nav_record_of(m);
-          const double t = gps_time.seconds(r.week, r.sow_s);
-          if (!(t > last_nav_t)) {  // a file's times only increase: an epoch already written (overlapping logs)
-            ++rows_not_advancing;
-            continue;
-          }
-          last_nav_t = t;
-          nav->write(r);
-          ++nav_n;
+          write_row(nav, "nav.nav", last_nav_t, nav_n, nav_record_of(m));
         } else if (ev.channel == "TSPI") {
           ldv_lcm::tspi_v1_t m;
           if (!decode_message(ev.data, m)) {
             ++malformed;
             continue;
           }
-          if (!tspi) tspi = std::make_unique<NavWriter>((fs::path(out_dir) / "tspi.nav").string());
-          const NavRecord r = nav_record_of(m);
-          const double t = gps_time.seconds(r.week, r.sow_s);
-          if (!(t > last_tspi_t)) {
-            ++rows_not_advancing;
-            continue;
-          }
-          last_tspi_t = t;
-          tspi->write(r);
-          ++tspi_n;
+          write_row(tspi, "tspi.nav", last_tspi_t, tspi_n, nav_record_of(m));
         }
       }
       corrupt_events += log.corrupt_events() + log.truncated_events();
