@@ -11,11 +11,11 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <optional>
-#include <thread>
-
 #include <ldv_lcm/imu_sample_t.hpp>
 #include <ldv_lcm/service_status_t.hpp>
+#include <optional>
+#include <sstream>
+#include <thread>
 
 #include "common/bus/bus.hpp"
 #include "common/formats/imu_device_frame.hpp"
@@ -134,4 +134,57 @@ TEST(ImuAcqBadFrames, GivenCorruptedFramesAndLineNoise_ThenGoodSamplesPublishedB
   EXPECT_EQ(status->malformed, bad);
   svc->signal(SIGTERM);
   EXPECT_EQ(svc->wait_exit(3.0), 0);
+}
+
+// A device that speaks another protocol than the configured one (issue 46, 6: its bytes were dropped in silence,
+// "frames 0, bad checksum 0"): NMEA text on a port configured for the time-stamp unit's frames.
+TEST(ImuAcqBadFrames, GivenBytesOfAnotherProtocol_ThenNothingPublishedTheBadFramesFaultRaisedAndTheProtocolQuestioned) {
+  test::PtyPair pty;
+  const std::string base =
+      (std::filesystem::temp_directory_path() / ("imu_acq_wrong_" + std::to_string(::getpid()))).string();
+  std::ofstream(base + ".yaml") << "bus_url: \"" << kUrl
+                                << "\"\ninput:\n  type: serial\n  serial: {device: " << pty.slave_path()
+                                << ", baud: 460800}\nprotocol: tsu\ntsu: {counter_hz: 10.0e6}\nsample_rate_hz: "
+                                   "200\npps: {source: none}\n";
+  auto svc = std::make_unique<test::ChildProcess>(std::string(LDV_BIN_DIR) + "/imu_acq",
+                                                  std::vector<std::string>{"--config", base + ".yaml"}, base + ".out",
+                                                  base + ".err");
+  Bus bus(kUrl);
+  size_t published = 0;
+  std::optional<ldv_lcm::service_status_t> status;
+  bus.subscribe<ldv_lcm::imu_sample_t>("IMU", [&](const ldv_lcm::imu_sample_t&, const std::string&) { ++published; });
+  bus.subscribe<ldv_lcm::service_status_t>("STATUS_IMU_ACQ",
+                                           [&](const ldv_lcm::service_status_t& m, const std::string&) { status = m; });
+  const auto until = [&](auto pred, double timeout_s) {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+    while (!pred() && std::chrono::steady_clock::now() < end) bus.handle(10);
+    return pred();
+  };
+  ASSERT_TRUE(until([&] { return status && (status->fault_bits & 1) == 0; }, 30.0)) << "the port did not open";
+
+  // When 3 s of GGA sentences arrive, 10 a second (about 750 bytes a second)
+  const std::string gga = "$GPGGA,123519.00,4807.0380,N,01131.0000,E,4,12,0.9,545.4,M,46.9,M,1.0,0000*5C\r\n";
+  size_t sent = 0;
+  for (int k = 0; k < 30; ++k) {
+    pty.write_all(reinterpret_cast<const uint8_t*>(gga.data()), gga.size());
+    sent += gga.size();
+    bus.handle(100);
+  }
+  // Then the bad-frames fault is raised and the service degraded, with nothing published
+  ASSERT_TRUE(until([&] { return status && (status->fault_bits & (1 << 3)); }, 10.0)) << "no bad-frames fault";
+  EXPECT_EQ(status->state, 2) << "degraded";
+  EXPECT_EQ(published, 0u);
+  // And the log asks whether the protocol is right, and the summary counts the bytes no frame holds
+  svc->signal(SIGTERM);
+  EXPECT_EQ(svc->wait_exit(3.0), 0);
+  std::stringstream log;
+  for (const char* stream : {".out", ".err"})
+    if (std::ifstream in(base + stream); in && in.peek() != EOF) log << in.rdbuf();
+  std::printf("[ imu_acq wrong protocol ] sent %zu bytes of NMEA; heartbeat fault bits 0x%x\n%s", sent,
+              status->fault_bits, log.str().c_str());
+  EXPECT_NE(log.str().find("is protocol right"), std::string::npos);
+  EXPECT_NE(log.str().find("frames 0,"), std::string::npos);
+  const size_t at = log.str().find("undecodable bytes ");
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_GT(std::stoul(log.str().substr(at + 18)), sent / 2) << "the bytes of the sentences are counted";
 }
