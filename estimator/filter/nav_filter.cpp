@@ -701,7 +701,10 @@ void NavFilter::apply_measurement(const Measurement& given) {
   const bool ok = kalman_update(c_.P, m, {gate, opt_.robust_update, force}, rec, dx_, want ? &K_ : nullptr);
   const bool beyond_gate = !force && rec.nis > gate;
   if (ok) correct(dx_);
-  if (split && !force)
+  // A fix beyond the gate that repeats the one before it is a state the fixes have left (a step, a misstated
+  // initial attitude drifting away: the re-synchronisation's to take up), not a sample of their noise.
+  const bool repeats_a_rejection = beyond_gate && run.count > 0 && (agrees_with(run.last_y) || agrees_with(run.held_y));
+  if (split && !force && !repeats_a_rejection)
     adapt_noise(rec, m.R, m.gnss_class);
   else if (opt_.adapt_imu_noise && m.sensor == sensors::kGnssPosition && !force)
     adapt_imu_noise(rec);

@@ -8,6 +8,8 @@ namespace ldv::est {
 namespace {
 // The data's memory: vibration changes with speed and road, over minutes.
 constexpr double kWindow_s = 120.0;
+// The fastest the IMU noise as installed changes: a factor e in this time.
+constexpr double kImuNoiseTime_s = 10.0;
 // The prior on each ln factor: the configured noise within a factor e (1 sigma); the IMU noise measured at a
 // standstill within a factor 1.65 (road vibration on the move above the standstill's engine idle).
 constexpr double kLnSigmaMeasuredImu = 0.5;
@@ -61,7 +63,8 @@ void NoiseAdaptation::add_fix(double t_s, const Eigen::MatrixXd& A, const Eigen:
       // which drifts up.
       const Score b = score(W_d, d, R_d), a_all = score(W, y, A), a_white = score(W_d, d, A_d);
       const int ib = 1 + gnss_class;  // this class's beta; the other classes' keep their value
-      const double keep = std::exp(-std::max(t_s - last_t_s_, 0.0) / kWindow_s);
+      const double dt_s = std::max(t_s - last_t_s_, 0.0);
+      const double keep = std::exp(-dt_s / kWindow_s);
       information_ *= keep;
       information_(0) += a_all.information;
       information_(ib) += b.information;
@@ -69,7 +72,12 @@ void NoiseAdaptation::add_fix(double t_s, const Eigen::MatrixXd& A, const Eigen:
       const int index[2] = {0, ib};
       for (int k = 0; k < 2; ++k) {
         const int i = index[k];
-        theta_(i) += (g[k] - (1.0 - keep) * prior_precision_(i) * theta_(i)) / (information_(i) + prior_precision_(i));
+        double step = (g[k] - (1.0 - keep) * prior_precision_(i) * theta_(i)) / (information_(i) + prior_precision_(i));
+        // alpha moves by a factor e in kImuNoiseTime_s at most: the noise as installed changes with road and speed
+        // over tens of seconds; what changes faster (a misstated initial state leaving the fixes in seconds) is a
+        // state error, the re-synchronisation's and the heading check's to take up.
+        if (i == 0) step = std::clamp(step, -dt_s / kImuNoiseTime_s, dt_s / kImuNoiseTime_s);
+        theta_(i) += step;
       }
       theta_(0) = std::clamp(theta_(0), 0.0, kMaxLnImu);
       theta_(ib) = std::clamp(theta_(ib), kMinLnGnss, kMaxLnGnss);
