@@ -157,6 +157,13 @@ void FilterOptions::check() const {
                                                                 {&vehicle_mounting, "vehicle_mounting"},
                                                                 {&odometer_lever_arm, "odometer_lever_arm"}};
   for (const auto& [b, name] : blocks) check_block(*b, name);
+  for (const auto& [name, p] : effect_priors) {
+    require(effect_registry().contains(name),
+            "prior of '" + name + "': no such effect (" + effect_registry().names() + ")");
+    require(p.mean.size() == p.std.size() && p.mean.size() > 0 && p.mean.allFinite() && p.std.allFinite() &&
+                p.std.minCoeff() >= 0.0,
+            "prior of " + name + ": as many finite values as sigmas (>= 0)");
+  }
   require(lever_arm.init.norm() <= 1000.0, "lever_arm: longer than 1000 m");
   require(finite_in(time_offset_init_s, -100.0, 100.0), "time_offset: must be within +-100 s");
   require(finite_in(time_offset_std_s, 0.0, 100.0), "time_offset std: must be in [0, 100] s");

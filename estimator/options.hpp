@@ -1,6 +1,7 @@
 #pragma once
 // Every setting of the estimator, in SI units, with one place that prints it (engineering units).
 #include <iosfwd>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -81,6 +82,12 @@ struct FilterOptions {
   BlockOptions vehicle_mounting, odometer_lever_arm;
   double odometer_scale_init = 0.0, odometer_scale_std = 0.02;
   AidOptions aids;
+  // Priors the configuration states for effect blocks (ldv.priors, written by `ldv diagnose --write-config`
+  // from the estimates it found): mean and 1-sigma in SI, by effect name, replacing the block's own.
+  struct EffectPrior {
+    Eigen::VectorXd mean, std;
+  };
+  std::map<std::string, EffectPrior> effect_priors;
 
   // Taken out of every raw gyro increment before anything else: a turn-on bias the alignment's static
   // start showed (Aligner::gyro_bias_seed; NavFilter::set_input_gyro_bias). The gyro-bias states then

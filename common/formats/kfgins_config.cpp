@@ -127,7 +127,7 @@ const std::vector<std::string> kLdvKeys = {
     // model and filter
     "model", "add", "drop", "cov_period_s", "gate_probability", "kfgins_compatible", "step_confirm_s",
     "adapt_imu_noise", "split_noise_adaptation", "use_gnss_velocity", "zupt", "history_s", "align_speed_mps",
-    "align_hypotheses", "gnss_bias_sigma_m", "gnss_bias_tau_s", "time_offset_s",
+    "align_hypotheses", "gnss_bias_sigma_m", "gnss_bias_tau_s", "time_offset_s", "priors",
     // geoldv51's moving bias per term (SI; estimator/README.md "State layout"), instead of imunoise's one
     // Gauss-Markov: B with its time constant, K, R
     "moving_bias_gyro_gm_rad_s", "moving_bias_gyro_gm_time_s", "moving_bias_gyro_rw_rad_s_sqrt_s",

@@ -71,7 +71,7 @@ NavFilter::NavFilter(FilterOptions options)
   for (const auto& b : layout_.blocks()) {
     const int o = b.offset - kNavDim;
     Eigen::VectorXd mean(b.dim), std(b.dim);
-    b.effect->prior(mean, std);
+    block_prior(b, mean, std);
     prior_std_.segment(o, b.dim) = std;
     b.effect->process_noise(q_c_.segment(o, b.dim));
     for (const Triplet& t : b.effect->dynamics()) F_ee_.push_back({o + t.row, o + t.col, t.value});
@@ -83,6 +83,18 @@ NavFilter::NavFilter(FilterOptions options)
     gate_edges_.push_back(dof == 0 ? 0.0 : math::chi_square_quantile(kGateEdgeProbability, dof));
   }
   C_b_v_coarse_ = C_b_n_from_euler(opt_.aids.mounting_rpy_rad);
+}
+
+void NavFilter::block_prior(const StateBlock& b, Eigen::Ref<Eigen::VectorXd> mean,
+                            Eigen::Ref<Eigen::VectorXd> std) const {
+  b.effect->prior(mean, std);
+  const auto stated = opt_.effect_priors.find(b.effect->name());
+  if (stated == opt_.effect_priors.end()) return;
+  if (stated->second.mean.size() != b.dim || stated->second.std.size() != b.dim)
+    throw std::invalid_argument(std::string("prior of ") + b.effect->name() + ": expected " + std::to_string(b.dim) +
+                                " values and sigmas");
+  mean = stated->second.mean;
+  std = stated->second.std;
 }
 
 double NavFilter::gate_threshold(int dof) const {
@@ -117,7 +129,7 @@ void NavFilter::initialize(const NavState& s, const NavStd& std) {
   var << std.pos_ned_m.cwiseAbs2(), std.vel_n_mps.cwiseAbs2(), std.att_rad.cwiseAbs2(), prior_std_.cwiseAbs2();
   for (const auto& b : layout_.blocks()) {
     Eigen::VectorXd mean(b.dim), sd(b.dim);
-    b.effect->prior(mean, sd);
+    block_prior(b, mean, sd);
     c_.x_eff.segment(b.offset - kNavDim, b.dim) = mean;
   }
   c_.P = var.asDiagonal();

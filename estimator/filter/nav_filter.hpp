@@ -186,6 +186,8 @@ class NavFilter {
   RejectRun& reject_run(SensorName sensor);
   void correct(const Eigen::VectorXd& dx);
   void rebuild_error_model();
+  // A block's prior: its own, or the one the configuration states for it (FilterOptions::effect_priors).
+  void block_prior(const StateBlock& b, Eigen::Ref<Eigen::VectorXd> mean, Eigen::Ref<Eigen::VectorXd> std) const;
   void reset_static_detector();  // for the configured noise times the floor
   void check_health(bool full);
   void reset_covariance();

@@ -11,6 +11,7 @@
 #include "estimator/filter/nav_filter.hpp"
 #include "estimator/ins/alignment.hpp"
 #include "estimator/run/alignment_options_from.hpp"
+#include "estimator/run/effect_priors_config.hpp"
 #include "estimator/run/nav_session.hpp"
 #include "estimator/update/updater.hpp"
 
@@ -76,6 +77,7 @@ FilterOptions options_from_kfgins(const KfGinsConfig& cfg) {
   o.split_noise_adaptation = ldv_key<bool>(cfg, "split_noise_adaptation", o.split_noise_adaptation);
   // The time_offset effect's prior mean [s] (GNSS tag minus IMU tag), e.g. from `ldv diagnose --write-config`.
   o.time_offset_init_s = ldv_key<double>(cfg, "time_offset_s", o.time_offset_init_s);
+  o.effect_priors = effect_priors_from(cfg);
   o.zupt.enabled = ldv_key<bool>(cfg, "zupt", o.zupt.enabled);
   o.aids.enabled = ldv_key<std::vector<std::string>>(cfg, "aids", o.aids.enabled);
   for (const std::string& aid : o.aids.enabled)

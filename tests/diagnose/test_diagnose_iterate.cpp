@@ -15,6 +15,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "estimator/run/effect_priors_config.hpp"
 #include "sim/simulator.hpp"
 
 namespace ldv {
@@ -89,6 +90,34 @@ TEST(DiagnoseIterate, TwoHiddenEffectsAreAddedStepByStepAndTheTunedConfigUsesEve
   const std::string nav =
       run("nav --kfgins-config " + tuned.string() + " --out " + (dir / "tuned.nav").string(), dir / "nav.log");
   EXPECT_NE(nav.find("gate rejections 0 "), std::string::npos) << nav;
+
+  // And it keeps what was found (issue 48, 1): each added effect's estimate is its prior there, with the estimated
+  // sigma, in the effect's printed unit (ldv.priors), so `ldv nav` starts from it instead of zero
+  int priors = 0;
+  for (const YAML::Node& e : d["verdict"]["estimates"]) {
+    const std::string name = e["effect"].as<std::string>();
+    if (!truth.count(name)) continue;
+    const YAML::Node p = t["ldv"]["priors"][name];
+    ASSERT_TRUE(p.IsDefined()) << name << " has no prior in the tuned configuration";
+    const est::PrintUnit unit = est::effect_print_unit(name);
+    EXPECT_EQ(p["unit"].as<std::string>(), unit.unit);
+    for (size_t k = 0; k < truth.at(name).size(); ++k) {
+      EXPECT_NEAR(p["value"][k].as<double>(), e["value"][k].as<double>() * unit.scale,
+                  1e-6 * std::abs(e["value"][k].as<double>() * unit.scale) + 1e-9)
+          << name;
+      EXPECT_NEAR(p["sigma"][k].as<double>(), e["sigma"][k].as<double>() * unit.scale,
+                  1e-6 * e["sigma"][k].as<double>() * unit.scale)
+          << name;
+      ++priors;
+    }
+  }
+  EXPECT_EQ(priors, 4);
+  // And the loop run again on the tuned configuration adds nothing: the model it states is the one found
+  const fs::path json2 = dir / "steps2.json";
+  run("diagnose --kfgins-config " + tuned.string() + " --iterate --json " + json2.string() + " --quiet",
+      dir / "diagnose2.log");
+  const YAML::Node d2 = YAML::LoadFile(json2.string());
+  EXPECT_EQ(d2["verdict"]["add"].size(), 0u) << "second iteration added " << YAML::Dump(d2["verdict"]["add"]);
   fs::remove_all(dir);
 }
 

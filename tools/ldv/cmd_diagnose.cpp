@@ -14,12 +14,13 @@
 #include "common/formats/kfgins_files.hpp"
 #include "common/io/atomic_file.hpp"
 #include "common/io/input_error.hpp"
-#include "tools/ldv/cli_checks.hpp"
+#include "estimator/run/effect_priors_config.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "toolbox/diagnose/diagnosis.hpp"
 #include "toolbox/diagnose/plots.hpp"
 #include "toolbox/diagnose/report_json.hpp"
 #include "toolbox/diagnose/report_text.hpp"
+#include "tools/ldv/cli_checks.hpp"
 #include "tools/ldv/command_registry.hpp"
 #include "tools/ldv/nav_input_options.hpp"
 
@@ -52,7 +53,24 @@ void write_tuned_config(const std::string& config_path, const diag::Diagnosis& d
   for (const std::string& e : d.add)
     if (std::find(add.begin(), add.end(), e) == add.end()) add.push_back(e);
   root["ldv"]["add"] = add;
-  // The estimates where the configuration has a place for them: the filter starts from them.
+  // Every added effect's estimate as its prior, with its estimated sigma (ldv.priors, in the printed units): the
+  // tuned run starts where the diagnosis ended, not at zero with the default prior. The mounting's residual is
+  // folded into the coarse mounting below, so its prior mean is zero.
+  for (const diag::EffectEstimate& e : d.added_estimates) {
+    if (e.value_si.size() == 0 || e.value_si.size() != e.std_si.size()) continue;
+    const est::PrintUnit unit = est::effect_print_unit(e.name);
+    std::vector<double> value, sigma;
+    for (int i = 0; i < e.value_si.size(); ++i) {
+      value.push_back(e.name == "vehicle_mounting" ? 0.0 : e.value_si(i) * unit.scale);
+      sigma.push_back(e.std_si(i) * unit.scale);
+    }
+    YAML::Node prior;
+    prior["value"] = value;
+    prior["sigma"] = sigma;
+    prior["unit"] = unit.unit;
+    root["ldv"]["priors"][e.name] = prior;
+  }
+  // The estimates where KF-GINS's keys or ldv's older ones have a place for them (read as before).
   for (const diag::EffectEstimate& e : d.added_estimates) {
     if (e.name == "lever_arm" && e.value_si.size() == 3)
       root["antlever"] = std::vector<double>{e.value_si(0), e.value_si(1), e.value_si(2)};

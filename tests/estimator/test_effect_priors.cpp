@@ -1,0 +1,87 @@
+// ldv.priors (estimator/run/effect_priors_config.hpp, issue 48 item 1): an effect's prior stated in the
+// configuration, in its printed unit, is where the filter starts that effect and how sure it is of it; a malformed
+// one is refused naming the file, the line and the key.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "common/io/input_error.hpp"
+#include "estimator/filter/nav_filter.hpp"
+#include "estimator/run/run_navigation.hpp"
+
+namespace ldv::est {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path config_with(const std::string& ldv_section) {
+  const fs::path f = fs::temp_directory_path() / ("ldv_priors_" + std::to_string(::getpid()) + ".yaml");
+  std::ofstream(f)
+      << "imupath: imu.txt\ngnsspath: gnss.txt\nimunoise:\n  arw: [0.1, 0.1, 0.1]\n  vrw: [0.1, 0.1, 0.1]\n"
+      << "  gbstd: [1, 1, 1]\n  abstd: [100, 100, 100]\n  gsstd: [100, 100, 100]\n  asstd: [100, 100, 100]\n"
+      << "  corrtime: 1\nldv:\n"
+      << ldv_section;
+  return f;
+}
+
+TEST(EffectPriors, GivenPriorsInTheConfiguration_ThenTheFilterStartsEachEffectFromItsStatedValueAndSigma) {
+  const fs::path f = config_with(
+      "  add: [g_sensitivity, gyro_misalignment]\n"
+      "  priors:\n"
+      "    g_sensitivity: {value: [12.0, -3.0, 0.5], sigma: [1.5, 1.0, 2.0], unit: deg/h/g}\n"
+      "    gyro_misalignment: {value: [100, -200, 300], sigma: [10, 20, 30]}\n");
+  NavFilter filter(options_from_kfgins(load_kfgins_config(f.string())));
+  NavState s;
+  s.pos = {0.6, 2.0, 100.0};
+  s.t_s = 1000.0;
+  filter.initialize(s, NavStd{});
+  // deg/h/g -> rad/s per m/s^2 and urad -> rad, written out here, not taken from the effect's print unit
+  const double deg_h_per_g = (M_PI / 180.0 / 3600.0) / 9.80665;
+  const std::map<std::string, std::pair<Vec3, Vec3>> expected = {
+      {"g_sensitivity", {Vec3(12.0, -3.0, 0.5) * deg_h_per_g, Vec3(1.5, 1.0, 2.0) * deg_h_per_g}},
+      {"gyro_misalignment", {Vec3(100, -200, 300) * 1e-6, Vec3(10, 20, 30) * 1e-6}}};
+  int found = 0;
+  for (const auto& b : filter.layout().blocks()) {
+    const auto it = expected.find(b.effect->name());
+    if (it == expected.end()) continue;
+    ++found;
+    const int o = b.offset - kNavDim;
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_NEAR(filter.effect_state()(o + i), it->second.first(i), 1e-9 * std::abs(it->second.first(i)))
+          << it->first << "[" << i << "]";
+      EXPECT_NEAR(std::sqrt(filter.covariance()(b.offset + i, b.offset + i)), it->second.second(i),
+                  1e-9 * it->second.second(i))
+          << it->first << " sigma [" << i << "]";
+    }
+  }
+  EXPECT_EQ(found, 2);
+  fs::remove(f);
+}
+
+TEST(EffectPriors, GivenAMalformedPrior_ThenItIsRefusedNamingTheKeyAndLine) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"    no_such_effect: {value: [1, 2, 3], sigma: [1, 1, 1]}\n", "no such effect"},
+      {"    gyro_scale: {value: [1, 2], sigma: [1, 1, 1]}\n", "gyro_scale.value': 2 numbers, expected 3"},
+      {"    gyro_scale: {value: [1, 2, 3], sigma: [1, -1, 1]}\n", "gyro_scale.sigma': expected finite numbers >= 0"},
+      {"    gyro_scale: {value: [1, 2, 3], sigma: [1, 1, 1], unit: rad}\n", "gyro_scale.unit': 'rad', expected 'ppm'"},
+      {"    gyro_scale: {value: [1, .nan, 3], sigma: [1, 1, 1]}\n", "gyro_scale.value': expected finite numbers"},
+      {"    gyro_scale: [1, 2, 3]\n", "gyro_scale': expected {value: [...], sigma: [...]}"},
+  };
+  for (const auto& [entry, why] : cases) {
+    const fs::path f = config_with(std::string("  priors:\n") + entry);
+    try {
+      options_from_kfgins(load_kfgins_config(f.string()));
+      ADD_FAILURE() << "accepted: " << entry;
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(why), std::string::npos) << what;
+      EXPECT_NE(what.find(f.string() + ":13"), std::string::npos) << "names the file and line 13: " << what;
+    }
+    fs::remove(f);
+  }
+}
+
+}  // namespace
+}  // namespace ldv::est
