@@ -107,6 +107,15 @@ double NoiseAdaptation::gnss_scale(int gnss_class) const {
   return std::exp(theta_(1 + std::clamp(gnss_class, 0, kGnssClasses - 1)));
 }
 
+double NoiseAdaptation::imu_scale_sigma() const {
+  return imu_scale() / std::sqrt(information_(0) + prior_precision_(0));
+}
+
+double NoiseAdaptation::gnss_scale_sigma(int gnss_class) const {
+  const int i = 1 + std::clamp(gnss_class, 0, kGnssClasses - 1);
+  return gnss_scale(gnss_class) / std::sqrt(information_(i) + prior_precision_(i));
+}
+
 double NoiseAdaptation::lag1_correlation() const {
   return products_ > 0 && sum_xx_ > 0.0 && sum_yy_ > 0.0 ? sum_xy_ / std::sqrt(sum_xx_ * sum_yy_) : NAN;
 }

@@ -43,6 +43,10 @@ class NoiseAdaptation {
   void set_imu_noise_measured();
   double imu_scale() const;                     // alpha, >= 1
   double gnss_scale(int gnss_class = 0) const;  // beta of a class, on the variance, >= 1
+  // The 1-sigma of each factor: the curvature of the windowed log-likelihood and the prior at the estimate (the
+  // factor times the sigma of its log; at a bound the estimate is clamped and this says how sure the data are).
+  double imu_scale_sigma() const;
+  double gnss_scale_sigma(int gnss_class = 0) const;
   long gnss_fixes(int gnss_class) const { return class_fixes_[gnss_class]; }
   // The prediction's mean share of the innovation covariance, tr(A S^-1) / rows, over the fixes seen.
   double prediction_share() const { return fixes_ > 0 ? share_sum_ / static_cast<double>(fixes_) : 0.0; }

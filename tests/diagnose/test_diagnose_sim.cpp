@@ -193,6 +193,11 @@ TEST(DiagnoseSim, GivenAGnssStdStatedFiveTimesTooSmall_ThenTheSelfCalibrationRep
   ASSERT_NE(gnss, nullptr);
   ASSERT_EQ(gnss->estimate_si.size(), 1);  // fixed solutions only
   EXPECT_NEAR(gnss->estimate_si(0), 12.5, 0.3 * 12.5);
+  // With its sigma (issue 48, 5): the windowed Fisher information of 120 s of 5 Hz fix pairs, about 3 % in the log
+  std::printf("[ info ] GNSS noise factor %.2f +- %.2f\n", gnss->estimate_si(0), gnss->sigma_si(0));
+  ASSERT_EQ(gnss->sigma_si.size(), 1);
+  EXPECT_GT(gnss->sigma_si(0), 0.01 * gnss->estimate_si(0));
+  EXPECT_LT(gnss->sigma_si(0), 0.1 * gnss->estimate_si(0));
   EXPECT_FALSE(gnss->applied);
   const std::string json_path = (std::filesystem::temp_directory_path() / "ldv_gnss_noise.json").string();
   write_json(d, json_path);

@@ -62,6 +62,20 @@ TEST(NoiseAdaptationClosedForm, GivenInnovationsAtTheirCovariance_ThenNothingMov
   EXPECT_LT(std::fabs(a.lag1_correlation()), 3.0 / std::sqrt(static_cast<double>(a.lag1_products())));
 }
 
+TEST(NoiseAdaptationClosedForm, GivenOnlyGnssNoise_ThenEachFactorsSigmaIsItsWindowedFisherInformation) {
+  // No prediction part (A = 0): a fix pair's difference has covariance R_k + R_k-1, so the Fisher information on
+  // ln beta is tr(I) / 2 = 1.5 per pair; over the 120 s window at 5 Hz (weights e^(-0.2 k / 120)) it sums to
+  // 1.5 / (1 - e^(-0.2 / 120)) = 900.7, plus the prior's 1: sigma of ln beta 1 / sqrt(901.7). The IMU factor has
+  // no information at all: its prior's sigma, 1.
+  const Eigen::MatrixXd R = Eigen::Matrix3d::Identity() * 1e-4, A = Eigen::Matrix3d::Zero();
+  std::mt19937 rng(11);
+  NoiseAdaptation a;
+  for (int k = 0; k < 6000; ++k) a.add_fix(0.2 * k, A, a.gnss_scale() * R, draw(rng, R));
+  const double window_information = 1.5 / (1.0 - std::exp(-0.2 / 120.0));
+  EXPECT_NEAR(a.gnss_scale_sigma() / a.gnss_scale(), 1.0 / std::sqrt(window_information + 1.0), 1e-3);
+  EXPECT_NEAR(a.imu_scale_sigma() / a.imu_scale(), 1.0, 1e-9);
+}
+
 TEST(NoiseAdaptationClosedForm, GivenAnAr1InnovationSequence_ThenTheLag1CorrelationIsItsCoefficient) {
   const Eigen::MatrixXd A = Eigen::Matrix3d::Identity() * 1e-4, R = A;
   std::mt19937 rng(10);

@@ -102,6 +102,7 @@ void measure_gnss_noise(const DiagnoseInputs& in, const est::FilterOptions& mode
     for (int c = 0; c < est::NoiseAdaptation::kGnssClasses; ++c) {
       d.gnss_noise_scale[c] = filter.gnss_noise_scale(c);
       d.gnss_noise_fixes[c] = filter.noise_adaptation().gnss_fixes(c);
+      d.gnss_noise_sigma[c] = filter.noise_adaptation().gnss_scale_sigma(c);
     }
   } catch (const std::exception&) {
     // the diagnosis's own runs report what is wrong with the inputs
@@ -125,18 +126,19 @@ void add_self_calibration_findings(Diagnosis& d) {
     d.self_calibration.push_back(c);
   }
   {
-    std::vector<double> factors;
+    std::vector<double> factors, sigmas;
     std::string classes;
     for (int c = 0; c < est::NoiseAdaptation::kGnssClasses; ++c)
       if (d.gnss_noise_fixes[c] > 0) {
         factors.push_back(d.gnss_noise_scale[c]);
+        sigmas.push_back(d.gnss_noise_sigma[c]);
         classes += std::string(classes.empty() ? "" : ", ") + est::NoiseAdaptation::gnss_class_name(c);
       }
     if (!factors.empty()) {
       SelfCalibration c;
       c.name = "gnss_noise";
       c.estimate_si = Eigen::Map<const Eigen::VectorXd>(factors.data(), static_cast<Eigen::Index>(factors.size()));
-      c.sigma_si = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(factors.size()), nan);
+      c.sigma_si = Eigen::Map<const Eigen::VectorXd>(sigmas.data(), static_cast<Eigen::Index>(sigmas.size()));
       c.unit = "x the stated position variance (" + classes + ")";
       c.applied = false;
       c.note =

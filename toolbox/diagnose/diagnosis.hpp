@@ -80,6 +80,7 @@ struct Diagnosis {
   // configured model). gnss_noise_fixes[c] 0: that class was not seen.
   std::array<double, 3> gnss_noise_scale{1.0, 1.0, 1.0};
   std::array<long, 3> gnss_noise_fixes{0, 0, 0};
+  std::array<double, 3> gnss_noise_sigma{0.0, 0.0, 0.0};  // 1-sigma of each factor
   bool imu_noise_applied = false;
   ModelCheck configured_check;
   // Every self-calibration finding (diagnose() adds the noise and the turn-on bias; `ldv diagnose` adds what the

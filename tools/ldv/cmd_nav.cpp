@@ -106,10 +106,10 @@ void print_summary(const char* what, long imu_samples, double t0, double t1, lon
       for (int c = 0; c < est::NoiseAdaptation::kGnssClasses; ++c)
         if (na.gnss_fixes(c) > 0)
           std::fprintf(stderr,
-                       "  GNSS noise: %s solutions' position variance times %.2f the stated (std times %.2f) at the "
-                       "end, estimated over %ld fixes apart from the IMU's\n",
-                       est::NoiseAdaptation::gnss_class_name(c), na.gnss_scale(c), std::sqrt(na.gnss_scale(c)),
-                       na.gnss_fixes(c));
+                       "  GNSS noise: %s solutions' position variance times %.2f +- %.2f the stated (std times %.2f) "
+                       "at the end, estimated over %ld fixes apart from the IMU's\n",
+                       est::NoiseAdaptation::gnss_class_name(c), na.gnss_scale(c), na.gnss_scale_sigma(c),
+                       std::sqrt(na.gnss_scale(c)), na.gnss_fixes(c));
       std::fprintf(stderr, "  GNSS position innovations: lag-1 correlation %.2f (white: within +-%.2f)\n",
                    na.lag1_correlation(), 3.0 / std::sqrt(std::max<double>(na.lag1_products(), 1.0)));
     }
