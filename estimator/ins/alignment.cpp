@@ -1,5 +1,6 @@
 #include "estimator/ins/alignment.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/geo/earth_model.hpp"
@@ -66,6 +67,13 @@ void Aligner::add_static(const ImuIncrement& raw) {
   sum_dv_ += raw.dvel_b_mps;
   sum_dtheta_ += raw.dtheta_b_rad;
   static_s_ += raw.dt_s;
+  second_dtheta_ += raw.dtheta_b_rad;
+  second_dt_s_ += raw.dt_s;
+  if (second_dt_s_ >= 1.0) {
+    second_rates_.push_back(second_dtheta_ / second_dt_s_);
+    second_dtheta_.setZero();
+    second_dt_s_ = 0.0;
+  }
 }
 
 void Aligner::carry_attitude(const ImuIncrement& raw) {
@@ -97,6 +105,17 @@ void Aligner::hold_until_gnss_says(const ImuIncrement& raw) {
   }
 }
 
+void Aligner::seed_gyro_bias() {
+  const Vec3 mean_rate = sum_dtheta_ / std::max(static_s_, 1e-9);
+  if (mean_rate.norm() <= 10.0 * earth::kOmegaIe_rad_s) return;
+  gyro_bias_seed_ = mean_rate;
+  if (second_rates_.size() < 2) return;  // no sigma from less than two seconds
+  Vec3 sum = Vec3::Zero(), sum_sq = Vec3::Zero();
+  for (const Vec3& r : second_rates_) sum += r, sum_sq += r.cwiseAbs2();
+  const double n = static_cast<double>(second_rates_.size());
+  gyro_bias_seed_std_ = ((sum_sq / n - (sum / n).cwiseAbs2()).cwiseMax(0.0) / (n - 1.0)).cwiseSqrt();
+}
+
 void Aligner::level() {
   const Vec3 rpy = level_from_specific_force(sum_dv_ / std::max(static_s_, 1e-9));
   q_b_l_ = quat_from_euler(rpy);
@@ -107,8 +126,7 @@ void Aligner::level() {
   // At rest the gyros read Earth rate plus their bias. Far above Earth rate the mean is the bias
   // (Earth rate's share, whatever the heading, stays under a tenth of it); a tactical gyro's mean is
   // Earth rate and stays in the data (gyrocompassing reads it).
-  const Vec3 mean_rate = sum_dtheta_ / std::max(static_s_, 1e-9);
-  if (static_s_ >= 1.0 && mean_rate.norm() > 10.0 * earth::kOmegaIe_rad_s) gyro_bias_seed_ = mean_rate;
+  if (static_s_ >= 1.0) seed_gyro_bias();
   levelled_ = true;
 }
 

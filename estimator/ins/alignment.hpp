@@ -13,6 +13,7 @@
 #include <deque>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "common/formats/nav_types.hpp"
 #include "estimator/ins/nav_state.hpp"
@@ -72,6 +73,10 @@ class Aligner {
   const std::string& method() const { return method_; }
   // The static start's mean rate when it is a turn-on bias (> 10 x Earth rate, from >= 1 s at rest).
   const std::optional<Vec3>& gyro_bias_seed() const { return gyro_bias_seed_; }
+  // Its 1-sigma per axis: the scatter of the seconds it was averaged over, over sqrt(their number). Seconds, not
+  // samples: a sample's rate carries the angle quantization, which does not accumulate and averages out of the
+  // mean; the scatter of 1 s means is the angle random walk's.
+  const Vec3& gyro_bias_seed_std() const { return gyro_bias_seed_std_; }
 
  private:
   void level();
@@ -88,6 +93,11 @@ class Aligner {
   double t_s_ = 0.0;
   bool moving_seen_ = false;
   Vec3 sum_dv_ = Vec3::Zero(), sum_dtheta_ = Vec3::Zero();
+  // The gyro's mean rate over each second of the static window (the turn-on bias's sigma).
+  Vec3 second_dtheta_ = Vec3::Zero();
+  double second_dt_s_ = 0.0;
+  std::vector<Vec3> second_rates_;
+  void seed_gyro_bias();  // at levelling: the static window's mean rate, when it is a turn-on bias
   double static_s_ = 0.0;
   bool levelled_ = false;
   Quat q_b_l_ = Quat::Identity();  // body to a levelled frame of arbitrary yaw, carried by the gyros
@@ -100,6 +110,7 @@ class Aligner {
   bool just_moved_ = false;        // the held samples, this one included, were just carried
   std::optional<std::pair<NavState, NavStd>> result_;
   std::optional<Vec3> gyro_bias_seed_;
+  Vec3 gyro_bias_seed_std_ = Vec3::Zero();
   std::string method_;
 };
 

@@ -300,7 +300,8 @@ void NavSession::drain_alignment_queue(double now_s, bool at_end) {
       slow_result_.reset();
       slow_replay_imu_.clear();
       slow_replay_gnss_.clear();
-      aligned({aligner_.state(), aligner_.std(), aligner_.method(), aligner_.gyro_bias_seed().value_or(Vec3::Zero())});
+      aligned({aligner_.state(), aligner_.std(), aligner_.method(), aligner_.gyro_bias_seed().value_or(Vec3::Zero()),
+               aligner_.gyro_bias_seed_std()});
       continue;
     }
     if (slow_running && slow_aligner_->aligned())
@@ -308,7 +309,7 @@ void NavSession::drain_alignment_queue(double now_s, bool at_end) {
           Alignment{slow_aligner_->state(), slow_aligner_->std(),
                     slow_aligner_->method() + " (the GNSS never reached " + fixed_text(o_.alignment.speed_min_mps) +
                         " m/s: course from " + fixed_text(kSlowCourseSpeed_mps) + " m/s)",
-                    slow_aligner_->gyro_bias_seed().value_or(Vec3::Zero())};
+                    slow_aligner_->gyro_bias_seed().value_or(Vec3::Zero()), slow_aligner_->gyro_bias_seed_std()};
     if (slow_result_ && head.imu.t_s - slow_result_->state.t_s > o_.slow_course_grace_s) take_slow_course_alignment();
   }
   if (at_end && !navigating() && slow_result_) take_slow_course_alignment();
@@ -398,6 +399,7 @@ void NavSession::aligned(Alignment al) {
     trial_window_s_ = o_.alignment.course_trial_s;
     return;
   }
+  gyro_bias_seed_std_rad_s_ = al.gyro_bias_seed_std;
   start(al.state, al.std, al.method, al.gyro_bias_seed, true);
 }
 
@@ -485,6 +487,7 @@ void NavSession::run_heading_trial(bool at_end) {
   al.method += " (best of " + std::to_string(n) + " body headings" + (misfit ? " by the accelerations" : "") +
                " over " + fixed_text(trial_window_s_) + " s: x axis " +
                std::to_string(static_cast<int>(std::lround(best_dyaw * kRadToDeg))) + " deg from the course)";
+  gyro_bias_seed_std_rad_s_ = al.gyro_bias_seed_std;
   start(al.state, al.std, al.method, al.gyro_bias_seed, true);
 }
 

@@ -108,6 +108,7 @@ class NavSession {
   const std::string& initialisation() const { return initialisation_; }
   // A turn-on gyro bias the alignment's static start showed, taken out of every increment (else 0).
   const Vec3& gyro_bias_seed_rad_s() const { return gyro_bias_seed_rad_s_; }
+  const Vec3& gyro_bias_seed_std_rad_s() const { return gyro_bias_seed_std_rad_s_; }  // 0 when not measured
   // The filter's initial epoch, and the IMU noise floor it runs with (FilterOptions::adapt_imu_noise).
   double started_at_s() const { return started_at_s_; }
   const ImuNoiseScale& imu_noise_floor() const { return imu_noise_floor_; }
@@ -132,6 +133,7 @@ class NavSession {
     NavStd std;
     std::string method;
     Vec3 gyro_bias_seed = Vec3::Zero();
+    Vec3 gyro_bias_seed_std = Vec3::Zero();
   };
   void drain_alignment_queue(double now_s, bool at_end);
   void decide_late_given_start(double now_s, bool at_end);
@@ -186,6 +188,7 @@ class NavSession {
   std::string initialisation_, given_note_, redo_note_;
   bool given_pending_ = false;  // the data started after the given state's time: the GNSS decides
   Vec3 gyro_bias_seed_rad_s_ = Vec3::Zero();
+  Vec3 gyro_bias_seed_std_rad_s_ = Vec3::Zero();
   double started_at_s_ = 0.0;
   ImuNoiseScale imu_noise_floor_;
   long imu_used_ = 0, gnss_used_ = 0, others_used_ = 0;

@@ -290,6 +290,7 @@ RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vecto
   sum.other_observations = session.other_readings_used();
   sum.initialisation = session.initialisation();
   sum.gyro_bias_seed_rad_s = session.gyro_bias_seed_rad_s();
+  sum.gyro_bias_seed_std_rad_s = session.gyro_bias_seed_std_rad_s();
   sum.imu_noise_floor = session.imu_noise_floor();
   sum.t_start_s = session.started_at_s();
   sum.t_end_s = filter.state().t_s;

@@ -51,6 +51,7 @@ struct RunSummary {
   double t_start_s = 0.0, t_end_s = 0.0;
   std::string initialisation;  // "given", or the alignment method
   Vec3 gyro_bias_seed_rad_s = Vec3::Zero();  // turn-on bias from the static start, taken out (alignment.hpp)
+  Vec3 gyro_bias_seed_std_rad_s = Vec3::Zero();  // its 1-sigma (0: not measured, e.g. a warm start's saved bias)
   FaultCounters faults;
   std::uint32_t final_status = 0;
   // With FilterOptions::adapt_imu_noise: the factors on the configured IMU noise PSDs a standstill in the

@@ -152,7 +152,8 @@ void add_self_calibration_findings(Diagnosis& d) {
     SelfCalibration c;
     c.name = "gyro_bias";
     c.estimate_si = seed;
-    c.sigma_si = Vec3::Constant(nan);
+    const Vec3& seed_std = d.before.summary.gyro_bias_seed_std_rad_s;
+    c.sigma_si = seed_std.isZero() ? Vec3::Constant(nan) : seed_std;
     c.unit = "deg/h";
     c.print_scale = kRadToDeg * 3600.0;
     c.applied = true;
