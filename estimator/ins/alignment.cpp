@@ -128,6 +128,7 @@ void Aligner::level() {
   // Earth rate and stays in the data (gyrocompassing reads it).
   if (static_s_ >= 1.0) seed_gyro_bias();
   levelled_ = true;
+  levelled_at_static_s_ = static_s_;
 }
 
 bool Aligner::chords_agree(const Vec3& previous, const Vec3& chord, double speed_min) const {
@@ -170,6 +171,10 @@ void Aligner::add_gnss(const GnssFix& fix) {
     method_ = "levelling + gyrocompassing";
   } else {
     if (!held_.empty()) return;
+    // Still at rest by the IMU when the GNSS course comes (a smooth start): levelled after static_min_s, the
+    // standstill went on; the level and the turn-on bias from all of it (5 s of a 60 s standstill left a 3DM-GX2's
+    // bias 0.022 deg/s uncertain, all of it 0.0065).
+    if (!moving_seen_ && static_s_ > levelled_at_static_s_) level();
     // Course over ground, from the fix's velocity or from consecutive positions.
     Vec3 v_n;
     double v_std = 0.0;

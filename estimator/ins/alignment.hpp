@@ -100,6 +100,7 @@ class Aligner {
   void seed_gyro_bias();  // at levelling: the static window's mean rate, when it is a turn-on bias
   double static_s_ = 0.0;
   bool levelled_ = false;
+  double levelled_at_static_s_ = 0.0;  // the standstill the level and the seed are from
   Quat q_b_l_ = Quat::Identity();  // body to a levelled frame of arbitrary yaw, carried by the gyros
   Vec3 level_std_rad_ = Vec3::Zero();
   std::optional<GnssFix> prev_fix_;
