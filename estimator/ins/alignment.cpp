@@ -106,6 +106,8 @@ void Aligner::hold_until_gnss_says(const ImuIncrement& raw) {
 }
 
 void Aligner::seed_gyro_bias() {
+  gyro_bias_seed_.reset();  // levelled again from a longer standstill: that one decides
+  gyro_bias_seed_std_.setZero();
   const Vec3 mean_rate = sum_dtheta_ / std::max(static_s_, 1e-9);
   if (mean_rate.norm() <= 10.0 * earth::kOmegaIe_rad_s) return;
   gyro_bias_seed_ = mean_rate;
