@@ -57,7 +57,10 @@ void write_tuned_config(const std::string& config_path, const diag::Diagnosis& d
   // tuned run starts where the diagnosis ended, not at zero with the default prior. The mounting's residual is
   // folded into the coarse mounting below, so its prior mean is zero.
   for (const diag::EffectEstimate& e : d.added_estimates) {
-    if (e.value_si.size() == 0 || e.value_si.size() != e.std_si.size()) continue;
+    // An estimate without a finite value or sigma is left to the comment below: a prior must be a number.
+    if (e.value_si.size() == 0 || e.value_si.size() != e.std_si.size() || !e.value_si.allFinite() ||
+        !e.std_si.allFinite())
+      continue;
     const est::PrintUnit unit = est::effect_print_unit(e.name);
     std::vector<double> value, sigma;
     for (int i = 0; i < e.value_si.size(); ++i) {
