@@ -34,6 +34,23 @@ ImuIncrement static_increment(double t, double dt) {
   return inc;
 }
 
+// Twenty fixes 0.2 s apart (std 2 cm) at the standing filter's position moved north by north_m(k) for fix k, each
+// followed by 40 static IMU samples; every innovation record goes to on_record.
+template <class NorthOfFix, class OnRecord>
+void feed_standing_fixes(NavFilter& f, NorthOfFix north_m, OnRecord on_record) {
+  double t = start().t_s;
+  GnssFix fix;
+  fix.pos = start().pos;
+  fix.pos_std_ned_m = Vec3::Constant(0.02);
+  for (int k = 0; k < 20; ++k) {
+    fix.t_s = t + 0.1;
+    fix.pos.lat_rad = start().pos.lat_rad + north_m(k) / 6.4e6;
+    f.add_gnss(fix);
+    for (int i = 0; i < 40; ++i) f.add_imu(static_increment(t += 0.005, 0.005));
+    for (const auto& r : f.take_innovations()) on_record(r);
+  }
+}
+
 TEST(Faults, NonFiniteImuAndGnssAreSkippedFlaggedAndCounted) {
   NavFilter f(FilterOptions{});
   f.initialize(start(), NavStd{});
@@ -103,18 +120,10 @@ TEST(Faults, HugeGnssOutlierIsGatedThenResynchronised) {
   o.zupt.enabled = false;
   NavFilter f(o);
   f.initialize(start(), NavStd{});
-  double t = 100.0;
-  GnssFix fix;
-  fix.pos = start().pos;
-  fix.pos_std_ned_m = Vec3::Constant(0.02);
   int rejected = 0;
-  for (int k = 0; k < 20; ++k) {
-    fix.t_s = t + 0.1;
-    fix.pos.lat_rad = start().pos.lat_rad + (k >= 5 ? 50.0 / 6.4e6 : 0.0);  // a 50 m jump from fix 5 on
-    f.add_gnss(fix);
-    for (int i = 0; i < 40; ++i) f.add_imu(static_increment(t += 0.005, 0.005));
-    for (const auto& r : f.take_innovations()) rejected += !r.accepted;
-  }
+  feed_standing_fixes(
+      f, [](int k) { return k >= 5 ? 50.0 : 0.0; },  // a 50 m jump from fix 5 on
+      [&](const InnovationRecord& r) { rejected += !r.accepted; });
   EXPECT_EQ(rejected, o.gate_max_consecutive_rejects);
   EXPECT_EQ(f.faults().gate_resyncs, 1);
   EXPECT_TRUE(f.state().v_n_mps.allFinite());
@@ -479,18 +488,10 @@ TEST(Faults, GivenNoGateAsKfGins_ThenEveryFixUpdatesTheFilter) {
   o.zupt.enabled = false;
   NavFilter f(o);
   f.initialize(start(), NavStd{});
-  double t = 100.0;
-  GnssFix fix;
-  fix.pos = start().pos;
-  fix.pos_std_ned_m = Vec3::Constant(0.02);
   int records = 0, rejected = 0;
-  for (int k = 0; k < 20; ++k) {
-    fix.t_s = t + 0.1;
-    fix.pos.lat_rad = start().pos.lat_rad + (k == 5 ? 50.0 / 6.4e6 : 0.0);  // one fix 50 m off
-    f.add_gnss(fix);
-    for (int i = 0; i < 40; ++i) f.add_imu(static_increment(t += 0.005, 0.005));
-    for (const auto& r : f.take_innovations()) ++records, rejected += !r.used();
-  }
+  feed_standing_fixes(
+      f, [](int k) { return k == 5 ? 50.0 : 0.0; },  // one fix 50 m off
+      [&](const InnovationRecord& r) { ++records, rejected += !r.used(); });
   EXPECT_EQ(records, 20);
   EXPECT_EQ(rejected, 0);
   EXPECT_EQ(f.faults().gate_rejections, 0);
