@@ -99,11 +99,7 @@ void measure_gnss_noise(const DiagnoseInputs& in, const est::FilterOptions& mode
     est::NavFilter filter(o);
     est::run_navigation(in.imu, in.gnss, in.cfg, filter, est::RunCallbacks{}, nullptr, &in.others);
     ++d.filter_runs;
-    for (int c = 0; c < est::NoiseAdaptation::kGnssClasses; ++c) {
-      d.gnss_noise_scale[c] = filter.gnss_noise_scale(c);
-      d.gnss_noise_fixes[c] = filter.noise_adaptation().gnss_fixes(c);
-      d.gnss_noise_sigma[c] = filter.noise_adaptation().gnss_scale_sigma(c);
-    }
+    d.gnss_noise = filter.noise_adaptation();
   } catch (const std::exception&) {
     // the diagnosis's own runs report what is wrong with the inputs
   }
@@ -129,9 +125,9 @@ void add_self_calibration_findings(Diagnosis& d) {
     std::vector<double> factors, sigmas;
     std::string classes;
     for (int c = 0; c < est::NoiseAdaptation::kGnssClasses; ++c)
-      if (d.gnss_noise_fixes[c] > 0) {
-        factors.push_back(d.gnss_noise_scale[c]);
-        sigmas.push_back(d.gnss_noise_sigma[c]);
+      if (d.gnss_noise.gnss_fixes(c) > 0) {
+        factors.push_back(d.gnss_noise.gnss_scale(c));
+        sigmas.push_back(d.gnss_noise.gnss_scale_sigma(c));
         classes += std::string(classes.empty() ? "" : ", ") + est::NoiseAdaptation::gnss_class_name(c);
       }
     if (!factors.empty()) {

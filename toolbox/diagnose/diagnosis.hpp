@@ -1,11 +1,11 @@
 #pragma once
 // `ldv diagnose` as a library (DESIGN.md section 3): run the model, check it, screen every missing
 // effect, confirm the best by rerunning with it, stepwise; then the verdict and the rerun with it.
-#include <array>
 #include <string>
 #include <vector>
 
 #include "estimator/filter/imu_noise_scale.hpp"
+#include "estimator/filter/noise_adaptation.hpp"
 #include "toolbox/diagnose/confirmation.hpp"
 #include "toolbox/diagnose/model_check.hpp"
 #include "toolbox/diagnose/score_test.hpp"
@@ -77,10 +77,8 @@ struct Diagnosis {
   double imu_noise_standstill_s = 0.0;  // the standstill it was measured over (0: none found)
   // The factors the GNSS position innovations call for on the stated variance, per solution quality, estimated apart
   // from the IMU's (FilterOptions::split_noise_adaptation, a pass of its own; not applied: the diagnosis judges the
-  // configured model). gnss_noise_fixes[c] 0: that class was not seen.
-  std::array<double, 3> gnss_noise_scale{1.0, 1.0, 1.0};
-  std::array<long, 3> gnss_noise_fixes{0, 0, 0};
-  std::array<double, 3> gnss_noise_sigma{0.0, 0.0, 0.0};  // 1-sigma of each factor
+  // configured model): the adaptation as that pass ended (a class with no fixes was not seen).
+  est::NoiseAdaptation gnss_noise;
   bool imu_noise_applied = false;
   ModelCheck configured_check;
   // Every self-calibration finding (diagnose() adds the noise and the turn-on bias; `ldv diagnose` adds what the
