@@ -43,16 +43,16 @@ struct Lane {
   std::vector<double> nav_sow_s;
   int starts = 0;
 
+  // The fusion's n-th start writes its stdout and stderr beside this path (.out, .err).
+  std::string log_base(int start) const { return (dir / (name + "_fusion" + std::to_string(start))).string(); }
   void start_fusion() {
-    ++starts;
-    const std::string log = (dir / (name + "_fusion" + std::to_string(starts))).string();
+    const std::string log = log_base(++starts);
     fusion = std::make_unique<test::ChildProcess>(kBin + "/fusion",
                                                   std::vector<std::string>{"-c", (dir / (name + ".yaml")).string()},
                                                   log + ".out", log + ".err");
   }
   std::string fusion_log(int start) const {
-    const std::string log = (dir / (name + "_fusion" + std::to_string(start))).string();
-    return text_of(log + ".out") + text_of(log + ".err");
+    return text_of(log_base(start) + ".out") + text_of(log_base(start) + ".err");
   }
   double longest_gap_s(double* before_s) const {
     double gap = 0.0;
