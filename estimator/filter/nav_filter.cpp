@@ -641,6 +641,18 @@ void NavFilter::apply_event(const Event& e) {
   }
 }
 
+void NavFilter::reopen_accel_errors_to_prior() {
+  for (const StateBlock& b : layout_.blocks()) {
+    if (!b.effect->drives_accel()) continue;
+    Eigen::VectorXd mean(b.dim), std(b.dim);
+    block_prior(b, mean, std);  // as configured, ldv.priors included
+    for (int i = 0; i < b.dim; ++i) {
+      double& var = c_.P(b.offset + i, b.offset + i);
+      var = std::max(var, std[i] * std[i]);  // a larger diagonal keeps P positive definite
+    }
+  }
+}
+
 NavFilter::RejectRun& NavFilter::reject_run(SensorName sensor) {
   for (RejectRun& r : c_.reject_runs)
     if (r.sensor == sensor) return r;
@@ -704,6 +716,12 @@ void NavFilter::apply_measurement(const Measurement& given) {
       const double dv_h_mps = (c_.nav.v_n_mps - c_.v_n_at_last_gnss_mps).head<2>().norm();
       const double heading_rad = 2.0 * y_h_m / std::max(dv_h_mps * T, 1e-9);
       if (heading_rad <= kMaxResyncHeading_rad) c_.P(kAtt + 2, kAtt + 2) += heading_rad * heading_rad;
+      // Where no heading error explains y, a tilt does: until the fixes were rejected they were explained with the
+      // tilt held at its stated variance, and the accelerometer errors took its specific force (g tilt) in its
+      // place. What those blocks learnt then goes back to their turn-on uncertainty, or the attitude settles where
+      // the wrong biases put it (a 0.8 deg roll stated 0.01 deg: 0.16 deg off at the end of a drive). Not where a
+      // heading explains y: a reopened lateral bias would take the heading's acceleration error (psi a) instead.
+      if (heading_rad > kMaxResyncHeading_rad) reopen_accel_errors_to_prior();
     }
     if (want) {  // to an observer, the opened variance is process noise of an instant
       const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(c_.P.rows(), c_.P.cols());

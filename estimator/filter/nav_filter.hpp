@@ -191,6 +191,8 @@ class NavFilter {
   void reset_static_detector();  // for the configured noise times the floor
   void check_health(bool full);
   void reset_covariance();
+  // Re-synchronisation: each accelerometer error block's variance back to at least its prior.
+  void reopen_accel_errors_to_prior();
   void announce_restart();  // to the observer: the covariance does not follow from the one before
   void take_snapshot();
   double kept_history_s() const;  // snapshots and IMU history: history_s, or longer for retract_suspect_fix
