@@ -715,7 +715,17 @@ void NavFilter::apply_measurement(const Measurement& given) {
       // tilted the attitude instead: 1 deg).
       const double dv_h_mps = (c_.nav.v_n_mps - c_.v_n_at_last_gnss_mps).head<2>().norm();
       const double heading_rad = 2.0 * y_h_m / std::max(dv_h_mps * T, 1e-9);
-      if (heading_rad <= kMaxResyncHeading_rad) c_.P(kAtt + 2, kAtt + 2) += heading_rad * heading_rad;
+      // Beyond the threshold y needs more than a heading error; but where a heading error at the threshold moves the
+      // position measurably (beyond 3 sigma of the fix), part of y may still be one: opened so that its 3 sigma
+      // reaches the threshold, beyond which the session's heading check re-aligns (a 27 deg heading error stated
+      // 0.05 deg, with the tilt and along-track errors in y too, was left at 2 deg sigma 30 deg off: 25 fixes
+      // rejected over the drive with the split adaptation, 15 since).
+      const double heading_reach_m = kMaxResyncHeading_rad * dv_h_mps * T / 2.0;
+      const bool heading_measurable = heading_reach_m > 3.0 * std::sqrt(m.R(0, 0) + m.R(1, 1));
+      if (heading_rad <= kMaxResyncHeading_rad)
+        c_.P(kAtt + 2, kAtt + 2) += heading_rad * heading_rad;
+      else if (heading_measurable)
+        c_.P(kAtt + 2, kAtt + 2) += std::pow(kMaxResyncHeading_rad / 3.0, 2);
       // Where no heading error explains y, a tilt does: until the fixes were rejected they were explained with the
       // tilt held at its stated variance, and the accelerometer errors took its specific force (g tilt) in its
       // place. What those blocks learnt then goes back to their turn-on uncertainty, or the attitude settles where

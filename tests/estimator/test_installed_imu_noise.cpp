@@ -251,12 +251,12 @@ TEST(InstalledImuNoise, GivenALiveSession_ThenTheStandstillBeforeTheStartSetsThe
   std::printf("re-synchronisations: measured %ld, as installed %ld, VRW 0 kept %ld\n", filled.faults.gate_resyncs,
               right.faults.gate_resyncs, zero.faults.gate_resyncs);
   EXPECT_NEAR(filled.vel_nees_per_dof / right.vel_nees_per_dof, 1.0, 0.25);
-  // Overconfident, the 0 kept lets the fixes leave the state, which must be re-synchronised (its NEES then
-  // recovers in part: 6.9 before the re-synchronisation reopened the accelerometer biases, 5.4 since).
+  // Overconfident, the 0 kept lets the fixes leave the state, which must be re-synchronised. Its NEES over the
+  // whole run no longer shows it: 6.9 before the re-synchronisation reopened the accelerometer biases and the
+  // heading, 4.3 since (as installed 4.2).
   EXPECT_EQ(filled.faults.gate_resyncs, 0);
   EXPECT_EQ(right.faults.gate_resyncs, 0);
   EXPECT_GE(zero.faults.gate_resyncs, 1);
-  EXPECT_GT(zero.vel_nees_per_dof, right.vel_nees_per_dof);
 }
 
 }  // namespace
