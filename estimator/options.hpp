@@ -107,7 +107,7 @@ struct FilterOptions {
   // With adapt_imu_noise: the GNSS position variance and the IMU noise each get their own factor, told apart by
   // the innovations' whiteness (estimator/filter/noise_adaptation.hpp), instead of one factor on the IMU that
   // every NIS excess went to (issue 47).
-  bool split_noise_adaptation = false;
+  bool split_noise_adaptation = true;
   // With adapt_imu_noise: run_navigation first measures the noise as installed over a standstill in the data
   // and makes it the floor (installed_imu_noise.hpp). Off where the adaptation itself is the measurement
   // (the IMU-latency decision compares how much noise the filter needs with and without a lag).
