@@ -110,9 +110,11 @@ double NavFilter::gate_edge(int dof) const {
 void NavFilter::restart() {
   FilterObserver* observer = observer_.p;
   const FaultCounters faults = faults_;  // a run's summary counts its faults over every re-alignment
+  const ImuNoisePeak peak = imu_noise_peak_;
   *this = NavFilter(opt_);
   observer_.p = observer;
   faults_ = faults;
+  imu_noise_peak_ = peak;
 }
 
 void NavFilter::initialize(const NavState& s, const NavStd& std) {
@@ -801,6 +803,11 @@ void NavFilter::adapt_imu_noise(const InnovationRecord& rec) {
   const double nis = std::min(rec.nis, gate_threshold(3));
   const double step = kNoiseAdaptGain * (nis / 3.0 - 1.0);
   c_.imu_noise_scale = std::clamp(c_.imu_noise_scale * std::exp(step), 1.0, kMaxImuNoiseScale);
+  note_imu_noise_peak();
+}
+
+void NavFilter::note_imu_noise_peak() {
+  if (c_.imu_noise_scale > imu_noise_peak_.scale) imu_noise_peak_ = {c_.imu_noise_scale, c_.nav.t_s};
 }
 
 void NavFilter::adapt_noise(const InnovationRecord& rec, const Eigen::MatrixXd& R_used, int gnss_class) {
@@ -811,6 +818,7 @@ void NavFilter::adapt_noise(const InnovationRecord& rec, const Eigen::MatrixXd& 
   const double cap = rec.nis > gate ? std::sqrt(gate / rec.nis) : 1.0;
   c_.noise_adaptation.add_fix(c_.nav.t_s, A, R_used, rec.innovation * cap, gnss_class);
   c_.imu_noise_scale = c_.noise_adaptation.imu_scale();
+  note_imu_noise_peak();
 }
 
 bool NavFilter::fill_unset_white_noise(const Vec3& arw_rad_per_sqrt_s, const Vec3& vrw_mps_per_sqrt_s) {

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <tuple>
 
 #include "common/geo/earth_model.hpp"
 #include "estimator/filter/nav_filter.hpp"
@@ -159,10 +160,14 @@ TEST(SplitNoiseAdaptation, GivenTheGnssStdStatedFiveTimesTooSmall_ThenTheGnssFac
   const auto factors = [](const sim::SimResult& s, const FilterOptions& o) {
     NavFilter f(o);
     run_to_end(s, f);
-    return std::pair{f.imu_noise_scale(), f.gnss_noise_scale()};
+    return std::tuple{f.imu_noise_scale(), f.gnss_noise_scale(), f.imu_noise_peak().scale};
   };
-  const auto [imu_small, gnss_small] = factors(stated_small, split);
-  const auto [imu_right, gnss_right] = factors(right, split);
+  const auto [imu_small, gnss_small, imu_peak_small] = factors(stated_small, split);
+  const auto [imu_right, gnss_right, imu_peak_right] = factors(right, split);
+  const auto [imu_legacy, gnss_legacy, imu_peak_legacy] = factors(stated_small, legacy);
+  std::printf(
+      "[ info ] IMU factor at most: std 5x too small %.2f, right %.2f; one factor on the IMU %.3g (%.3g at the end)\n",
+      imu_peak_small, imu_peak_right, imu_peak_legacy, imu_legacy);
   const double drift_right = test::evaluate(right, split).outage_drift_m;
   const double drift_small = test::evaluate(stated_small, split).outage_drift_m;
   const double drift_legacy = test::evaluate(stated_small, legacy).outage_drift_m;
@@ -173,8 +178,11 @@ TEST(SplitNoiseAdaptation, GivenTheGnssStdStatedFiveTimesTooSmall_ThenTheGnssFac
   EXPECT_NEAR(gnss_small, 12.5, 0.3 * 12.5);
   EXPECT_GE(imu_small, 0.7);
   EXPECT_LE(imu_small, 1.5);
+  EXPECT_LE(imu_peak_small, 1.5);  // at no time on the way either
   EXPECT_LE(gnss_right, 1.3);
   EXPECT_LE(imu_right, 1.5);
+  EXPECT_LE(imu_peak_right, 1.5);
+  EXPECT_GE(imu_peak_legacy, imu_legacy);
   EXPECT_LT(drift_small, 1.5 * drift_right);
 }
 }  // namespace

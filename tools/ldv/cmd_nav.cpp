@@ -97,10 +97,14 @@ void print_summary(const char* what, long imu_samples, double t0, double t1, lon
                     standstill_s, floor.gyro, floor.accel);
     else
       std::snprintf(measured, sizeof measured, "no standstill in the data to measure it over: floor 1x");
-    std::fprintf(stderr,
-                 "  IMU noise as installed: gyro %.1fx, accel %.1fx the configured PSD at the end (%s; times %.2f adapted "
-                 "to the GNSS position NIS; %ld fixes down-weighted by the robust update)\n",
-                 run.gyro, run.accel, measured, f.imu_noise_scale(), ft.downweighted);
+    char peak[96] = "";
+    if (f.imu_noise_peak().scale > f.imu_noise_scale())
+      std::snprintf(peak, sizeof peak, ", at most %.3g at %.1f s", f.imu_noise_peak().scale, f.imu_noise_peak().t_s);
+    std::fprintf(
+        stderr,
+        "  IMU noise as installed: gyro %.1fx, accel %.1fx the configured PSD at the end (%s; times %.2f adapted "
+        "to the GNSS position NIS%s; %ld fixes down-weighted by the robust update)\n",
+        run.gyro, run.accel, measured, f.imu_noise_scale(), peak, ft.downweighted);
     if (f.options().split_noise_adaptation) {
       const est::NoiseAdaptation& na = f.noise_adaptation();
       for (int c = 0; c < est::NoiseAdaptation::kGnssClasses; ++c)
