@@ -105,16 +105,40 @@ void Aligner::hold_until_gnss_says(const ImuIncrement& raw) {
   }
 }
 
+std::vector<Vec3> Aligner::still_seconds() const {
+  // A turn-on bias is constant; a turn on the spot (the GNSS shows no chord, the IMU's held samples are taken
+  // for vibration) is a rate that comes and goes. Seconds whose mean rate leaves the median of all by more than
+  // 4 robust sigma (1.4826 MAD, at least what the ARW makes of a second) on any axis were turning.
+  if (second_rates_.size() < 3) return second_rates_;
+  Vec3 median, spread;
+  for (int axis = 0; axis < 3; ++axis) {
+    std::vector<double> v;
+    for (const Vec3& r : second_rates_) v.push_back(r(axis));
+    const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+    std::nth_element(v.begin(), mid, v.end());
+    median(axis) = *mid;
+    for (double& x : v) x = std::abs(x - median(axis));
+    std::nth_element(v.begin(), mid, v.end());
+    spread(axis) = std::max(1.4826 * *mid, o_.arw_rad_per_sqrt_s);
+  }
+  std::vector<Vec3> still;
+  for (const Vec3& r : second_rates_)
+    if (((r - median).cwiseAbs().array() <= 4.0 * spread.array()).all()) still.push_back(r);
+  return still;
+}
+
 void Aligner::seed_gyro_bias() {
   gyro_bias_seed_.reset();  // levelled again from a longer standstill: that one decides
   gyro_bias_seed_std_.setZero();
-  const Vec3 mean_rate = sum_dtheta_ / std::max(static_s_, 1e-9);
+  const std::vector<Vec3> still = still_seconds();
+  Vec3 sum = Vec3::Zero(), sum_sq = Vec3::Zero();
+  for (const Vec3& r : still) sum += r, sum_sq += r.cwiseAbs2();
+  const double n = static_cast<double>(still.size());
+  // The mean over the still seconds (the whole standstill, partial second included, below two of them).
+  const Vec3 mean_rate = still.size() >= 2 ? Vec3(sum / n) : Vec3(sum_dtheta_ / std::max(static_s_, 1e-9));
   if (mean_rate.norm() <= 10.0 * earth::kOmegaIe_rad_s) return;
   gyro_bias_seed_ = mean_rate;
-  if (second_rates_.size() < 2) return;  // no sigma from less than two seconds
-  Vec3 sum = Vec3::Zero(), sum_sq = Vec3::Zero();
-  for (const Vec3& r : second_rates_) sum += r, sum_sq += r.cwiseAbs2();
-  const double n = static_cast<double>(second_rates_.size());
+  if (still.size() < 2) return;  // no sigma from less than two seconds
   gyro_bias_seed_std_ = ((sum_sq / n - (sum / n).cwiseAbs2()).cwiseMax(0.0) / (n - 1.0)).cwiseSqrt();
 }
 

@@ -97,6 +97,7 @@ class Aligner {
   Vec3 second_dtheta_ = Vec3::Zero();
   double second_dt_s_ = 0.0;
   std::vector<Vec3> second_rates_;
+  std::vector<Vec3> still_seconds() const;  // second_rates_ without the seconds that turned
   void seed_gyro_bias();  // at levelling: the static window's mean rate, when it is a turn-on bias
   double static_s_ = 0.0;
   bool levelled_ = false;
