@@ -75,7 +75,8 @@ struct FilterOptions {
   BlockOptions gyro_misalignment, accel_misalignment, g_sensitivity;
   BlockOptions lever_arm, gravity_anomaly;
   BlockOptions gnss_position_bias;  // NED [m]; Gauss-Markov sigma / corr_time_s (ldv: gnss_bias_sigma_m, gnss_bias_tau_s)
-  double time_offset_init_s = 0.0, time_offset_std_s = 0.01;
+  // An unstated IMU-GNSS time offset: as late as real IMUs come (host-stamped USB boxes: hundreds of ms).
+  double time_offset_init_s = 0.0, time_offset_std_s = 0.3;
   MovingBiasOptions gyro_moving_bias, accel_moving_bias;
   // Land-vehicle effects (entering the aids): residual mounting rotation [rad], odometer point [m, body],
   // odometer scale [-].
