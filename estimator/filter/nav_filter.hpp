@@ -87,7 +87,7 @@ class NavFilter {
   double imu_noise_scale() const { return c_.imu_noise_scale; }
   // The largest that factor reached over the run (every re-alignment included) and when: the value at the end
   // says what the filter ran with last, not what it needed on the way (one factor on the IMU ended a real walk
-  // at 5.5x after 2800x while walking).
+  // at 5.5x after about 3000x while walking).
   struct ImuNoisePeak {
     double scale = 1.0;
     double t_s = NAN;
