@@ -7,6 +7,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <string>
 
 #include "sim/simulator.hpp"
 #include "tests/hardening/cli_run.hpp"
@@ -48,6 +50,46 @@ TEST(SelfCalibration, GivenImuStampsLate_ThenDiagnoseReportsTheLatencyItTookOutW
     EXPECT_NEAR(estimate_s, -0.15, 3.0 * sigma_s + 0.002);
   }
   EXPECT_TRUE(found) << "no time_offset in self_calibration";
+  fs::remove_all(dir);
+}
+
+// Issue 48, item 5: whether the GNSS velocities are fused is the system's own decision, so `ldv diagnose` lists it
+// with what it rested on. The real walk's .pos velocities lag the positions by 0.1-0.15 s and differ from their
+// chords by 0.13 m/s RMS against a stated 0.05 m/s (tests/estimator/data/walk_0827_mems.yaml, measured apart): with
+// nothing configured, the check finds them several times their stated variance and does not use them.
+TEST(SelfCalibration, GivenTheWalksLaggingGnssVelocities_ThenDiagnoseListsThatTheyWereNotUsedWithTheirMisfit) {
+  const fs::path here = fs::path(__FILE__).parent_path();
+  const fs::path walk = fs::weakly_canonical(here / "../../../shared/data/drives/walk_0827");
+  if (!fs::exists(walk / "gnss_1730_sf.pos")) GTEST_SKIP() << "no ../shared walk data at " << walk;
+  const fs::path dir = fs::temp_directory_path() / ("ldv_self_calibration_walk_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  // The test configuration with absolute paths and the velocity decision left to the system.
+  std::ifstream given(here / "../estimator/data/walk_0827_mems.yaml");
+  std::ofstream cfg(dir / "walk.yaml");
+  for (std::string line; std::getline(given, line);) {
+    if (line.rfind("imupath:", 0) == 0) line = "imupath: " + (walk / "imu_1730.csv").string();
+    if (line.rfind("gnsspath:", 0) == 0) line = "gnsspath: " + (walk / "gnss_1730_sf.pos").string();
+    if (line.find("use_gnss_velocity:") != std::string::npos) continue;
+    cfg << line << "\n";
+  }
+  cfg.close();
+  const fs::path json = dir / "diagnosis.json";
+  const test::CliResult r = test::run_ldv(
+      {"diagnose", "--kfgins-config", (dir / "walk.yaml").string(), "--json", json.string(), "--quiet"}, 240.0);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const YAML::Node d = YAML::LoadFile(json.string());
+  bool found = false;
+  for (const YAML::Node& c : d["self_calibration"]) {
+    if (c["name"].as<std::string>() != "gnss_velocity") continue;
+    found = true;
+    const double misfit = c["estimate"][0].as<double>(), sigma = c["sigma"][0].as<double>();
+    std::printf("self_calibration gnss_velocity: misfit %.2f +- %.2f, applied %s\n", misfit, sigma,
+                c["applied"].as<bool>() ? "yes" : "no");
+    EXPECT_FALSE(c["applied"].as<bool>());
+    EXPECT_GT(misfit - 3.0 * sigma, 1.0);  // beyond a consistent 1 by more than 3 sigma
+    EXPECT_GT(sigma, 0.0);
+  }
+  EXPECT_TRUE(found) << "no gnss_velocity in self_calibration";
   fs::remove_all(dir);
 }
 

@@ -464,6 +464,7 @@ void decide_gnss_velocity_use(const NavInputArgs& a, NavInputs& in) {
   const bool kfgins = a.kfgins_compatible || !in.options.robust_update;
   if (configured || kfgins || !any_velocity || !in.options.use_gnss_velocity) return;
   const est::GnssVelocityCheck c = est::check_gnss_velocity(in.gnss);
+  in.gnss_velocity_check = c;
   char note[220];
   if (c.consistent()) {
     std::snprintf(note, sizeof note, "GNSS velocity used (agrees with the positions: misfit %.1fx its sigma^2 over %d fixes)",

@@ -17,12 +17,14 @@
 // accel_bias, gyro_scale and accel_scale blocks, unless the configuration gives that prior (initbgstd,
 // initbastd, initsgstd, initsastd): after the calibration, what is left of those errors is its uncertainty.
 // NavInputs::imu_note says what was applied.
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "common/formats/kfgins_config.hpp"
 #include "common/formats/nav_types.hpp"
 #include "common/io/dropped_records.hpp"
+#include "estimator/calibrate/gnss_velocity_check.hpp"
 #include "estimator/calibrate/imu_latency.hpp"
 #include "estimator/options.hpp"
 #include "estimator/update/observation.hpp"
@@ -99,6 +101,7 @@ struct NavInputs {
   } imu_latency_refined;
   // What was decided about the GNSS velocities (estimator/calibrate/gnss_velocity_check.hpp), "" if none.
   std::string gnss_velocity_note;
+  std::optional<est::GnssVelocityCheck> gnss_velocity_check;  // what that decision rested on, when it was made
   std::vector<InputFileCounts> file_counts;  // IMU then GNSS
   std::vector<ImuTimeGap> imu_gaps;          // IMU intervals > 10 median intervals (kept: the estimator decides)
   // Readings of the other sensors (odometer with --aid odometer), in time order: run_navigation's `others`.
