@@ -4,6 +4,7 @@
 // the filter off the positions at every acceleration. The check compares each reported horizontal
 // velocity with the chord of the neighbouring positions (exact for constant acceleration) against
 // their combined stated sigmas; the lag that best aligns them is reported for the record.
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -14,6 +15,9 @@ namespace ldv::est {
 struct GnssVelocityCheck {
   int compared = 0;             // fixes with a velocity and two close neighbours
   double normalised_mse = 0.0;  // mean of e^T (Sv + Sc)^-1 e / 2 over them: about 1 when consistent
+  // Its 1-sigma: each term is exponential (chi-square with 2 dof over 2), whose sd is its mean, so the mean of
+  // `compared` of them has the mean over sqrt(compared).
+  double normalised_mse_sigma() const { return normalised_mse / std::sqrt(std::max(compared, 1)); }
   double best_lag_s = 0.0;      // velocity time tag minus the time it is true at, best fit in [-0.5, 0.5] s
   double normalised_mse_at_lag = 0.0;
   // Likelihood-ratio statistic of that lag against none, 2 n (mse(0) - mse(lag)): chi-square with one

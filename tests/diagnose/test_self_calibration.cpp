@@ -59,8 +59,8 @@ TEST(SelfCalibration, GivenImuStampsLate_ThenDiagnoseReportsTheLatencyItTookOutW
 // nothing configured, the check finds them several times their stated variance and does not use them.
 TEST(SelfCalibration, GivenTheWalksLaggingGnssVelocities_ThenDiagnoseListsThatTheyWereNotUsedWithTheirMisfit) {
   const fs::path here = fs::path(__FILE__).parent_path();
-  const fs::path walk = fs::weakly_canonical(here / "../../../shared/data/drives/walk_0827");
-  if (!fs::exists(walk / "gnss_1730_sf.pos")) GTEST_SKIP() << "no ../shared walk data at " << walk;
+  const fs::path walk = fs::path(LDV_SHARED_DATA_DIR) / "drives/walk_0827";
+  if (!fs::exists(walk / "gnss_1730_sf.pos")) GTEST_SKIP() << "no shared walk data at " << walk;
   const fs::path dir = fs::temp_directory_path() / ("ldv_self_calibration_walk_" + std::to_string(getpid()));
   fs::create_directories(dir);
   // The test configuration with absolute paths and the velocity decision left to the system.

@@ -207,9 +207,9 @@ TEST(Alignment, GivenAStartThatTurnsOnTheSpot_ThenTheTurnOnBiasComesFromTheStand
   for (const sim::ImuBiasSample& h : sim.imu_bias_history)
     if (h.t_s >= t0 + 6.0 && h.t_s <= t0 + 44.0) bias_sum += h.gyro_bias_rad_s, ++n;
   ASSERT_GT(n, 30);
-  const auto& rest = sim.truth.back();  // any epoch: the rate of Earth in the body frame while standing
-  const size_t k_rest = static_cast<size_t>(20.0 * sim.request.imu_rate_hz);
-  const Vec3 earth_b = C_b_n_from_euler(sim.truth[k_rest].rpy_rad).transpose() * earth::omega_ie_n(rest.pos.lat_rad);
+  // The rate of Earth in the body frame while standing (20 s into the standstill).
+  const auto& rest = sim.truth[static_cast<size_t>(20.0 * sim.request.imu_rate_hz)];
+  const Vec3 earth_b = C_b_n_from_euler(rest.rpy_rad).transpose() * earth::omega_ie_n(rest.pos.lat_rad);
   const Vec3 truth_rate = bias_sum / n + earth_b;
   const Vec3 error = sum.gyro_bias_seed_rad_s - truth_rate;
   std::printf("%s\nturn-on bias seed - truth over the standstill [%.4f %.4f %.4f] deg/s, sigma [%.4f %.4f %.4f]\n",

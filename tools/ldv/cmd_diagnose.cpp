@@ -165,15 +165,13 @@ void run_diagnose(const DiagnoseArgs& a) {
     c.note = b;
     d.self_calibration.insert(d.self_calibration.begin(), c);
   }
-  // Whether the GNSS velocities were fused is the system's own decision too (nav_inputs.cpp): the misfit it rested
-  // on, a mean of e^T S^-1 e / 2 over the compared fixes (exponential under consistency: its sigma is the mean over
-  // sqrt of their number).
+  // Whether the GNSS velocities were fused is the system's own decision too (nav_inputs.cpp): the misfit it rested on.
   if (loaded.gnss_velocity_check) {
     const est::GnssVelocityCheck& v = *loaded.gnss_velocity_check;
     diag::SelfCalibration c;
     c.name = "gnss_velocity";
     c.estimate_si = Eigen::VectorXd::Constant(1, v.normalised_mse);
-    c.sigma_si = Eigen::VectorXd::Constant(1, v.normalised_mse / std::sqrt(std::max(v.compared, 1)));
+    c.sigma_si = Eigen::VectorXd::Constant(1, v.normalised_mse_sigma());
     c.unit = "x its stated sigma^2 against the position chords";
     c.applied = loaded.options.use_gnss_velocity;
     c.note = loaded.gnss_velocity_note;
