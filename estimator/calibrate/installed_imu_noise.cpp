@@ -56,8 +56,9 @@ double white_part(const std::vector<double>& p, const std::vector<double>& g, do
 // kRising (a white spectrum's halves agree to about 10 %), the quantisation's part (a white error of the
 // integrated angle or velocity, rate density rising as f^2, integrating to nothing too) is split off
 // (white_part). Counted as white, the paper's HG1700 gyro quantisation (6-17 arcsec at 100 Hz) read as 700x its
-// ARW. NaN when the series is too short for one segment with bins in the band.
-double white_psd(const std::vector<double>& r, double dt) {
+// ARW. NaN when the series is too short for one segment with bins in the band. bins_used: how many bins the
+// median was taken over (its sigma, psd_relative_sigma).
+double white_psd(const std::vector<double>& r, double dt, size_t& bins_used) {
   constexpr double kBandLow_Hz = 0.5, kBandHigh_Hz = 40.0, kSegment_s = 4.0, kRising = 1.3;
   constexpr int kMaxSegments = 8;  // 18 s of standstill: ~1,300 bins, 4 % on the PSD (and a bounded cost)
   const size_t n = r.size();
@@ -96,6 +97,7 @@ double white_psd(const std::vector<double>& r, double dt) {
     p[j] = bins[j].second;
     g[j] = 4.0 * std::pow(std::sin(M_PI * bins[j].first * dt), 2);
   }
+  bins_used = p.size();
   return white_part(p, g, kRising);
 }
 
@@ -116,13 +118,35 @@ double windowed_norm_scatter(const std::vector<Eigen::Matrix<double, 6, 1>>& rat
   return stds.empty() ? 0.0 : median_in_place(stds);
 }
 
+// The relative 1-sigma of a white PSD taken as the median of n periodogram bins over ln 2. The sample median of n
+// independent exponential powers of mean m has the sigma m / sqrt(n) (1 / (2 sqrt(n) f(median)), f = e^-ln2 / m),
+// a relative sigma of 1 / (ln 2 sqrt(n)). The bins are not independent: a Hann window correlates a bin's complex
+// value with its neighbour's by -2/3 and the next by 1/6 (powers: 4/9 and 1/36), and half-overlapping segments the
+// same bin's by 1/6 (power: 1/36); n counts as n / ((1 + 2 (4/9 + 1/36)) (1 + 2/36)) independent bins.
+double psd_median_relative_sigma(size_t bins) {
+  if (bins == 0) return NAN;
+  constexpr double kCorrelatedBins = (1.0 + 2.0 * (4.0 / 9.0 + 1.0 / 36.0)) * (1.0 + 2.0 / 36.0);
+  return std::sqrt(kCorrelatedBins / static_cast<double>(bins)) / std::log(2.0);
+}
+
 }  // namespace
+
+ImuNoiseScale InstalledImuNoise::psd_scale_sigma(const Vec3& arw_configured, const Vec3& vrw_configured) const {
+  if (!found) return {NAN, NAN};
+  const ImuNoiseScale raw = psd_scale_unbounded(arw_configured, vrw_configured);
+  return {raw.gyro * psd_relative_sigma, raw.accel * psd_relative_sigma};
+}
+
+ImuNoiseScale InstalledImuNoise::psd_scale_unbounded(const Vec3& arw_configured, const Vec3& vrw_configured) const {
+  const Vec3 g = arw_rad_per_sqrt_s.cwiseQuotient(arw_configured.cwiseMax(1e-12)).cwiseAbs2();
+  const Vec3 a = vrw_mps_per_sqrt_s.cwiseQuotient(vrw_configured.cwiseMax(1e-12)).cwiseAbs2();
+  return {median3(g), median3(a)};
+}
 
 ImuNoiseScale InstalledImuNoise::psd_scale(const Vec3& arw_configured, const Vec3& vrw_configured) const {
   if (!found) return {};
-  const Vec3 g = arw_rad_per_sqrt_s.cwiseQuotient(arw_configured.cwiseMax(1e-12)).cwiseAbs2();
-  const Vec3 a = vrw_mps_per_sqrt_s.cwiseQuotient(vrw_configured.cwiseMax(1e-12)).cwiseAbs2();
-  return {std::max(1.0, median3(g)), std::max(1.0, median3(a))};
+  const ImuNoiseScale raw = psd_scale_unbounded(arw_configured, vrw_configured);
+  return {std::max(1.0, raw.gyro), std::max(1.0, raw.accel)};
 }
 
 InstalledImuNoise measure_installed_imu_noise(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
@@ -168,8 +192,10 @@ InstalledImuNoise measure_installed_imu_noise(const std::vector<ImuIncrement>& i
   for (int axis = 0; axis < 6; ++axis) {
     std::vector<double> r(rates.size());
     for (size_t k = 0; k < r.size(); ++k) r[k] = rates[k](axis);
-    const double psd = white_psd(r, dt);
+    size_t bins = 0;
+    const double psd = white_psd(r, dt, bins);
     if (!(psd >= 0.0)) return out;
+    out.psd_relative_sigma = psd_median_relative_sigma(bins);
     density(axis) = std::sqrt(psd);
   }
   out.f_norm_scatter_mps2 = windowed_norm_scatter(rates, dt, InstalledImuNoise::kSpecificForceWindow_s);

@@ -5,6 +5,7 @@
 // noise in question); over it, the median PSD of each axis's rate between 0.5 and 40 Hz gives its
 // white-noise density (an engine's harmonics, 25 Hz and up, fill the sample-to-sample scatter but take few
 // bins, and integrate to nothing).
+#include <cmath>
 #include <vector>
 
 #include "common/formats/nav_types.hpp"
@@ -22,9 +23,15 @@ struct InstalledImuNoise {
   // only: at idle the harmonics scatter a tactical IMU's |f| several times beyond it).
   static constexpr double kSpecificForceWindow_s = 0.5;
   double f_norm_scatter_mps2 = 0.0;
+  // The relative 1-sigma of each axis's measured PSD (the median of the periodogram's bins: a few % over 10 s).
+  double psd_relative_sigma = NAN;
   // The factors on the configured PSDs that cover the measured noise, gyro and accel apart (each the median
   // over axes of the squared density ratio; at least 1).
   ImuNoiseScale psd_scale(const Vec3& arw_configured, const Vec3& vrw_configured) const;
+  // The 1-sigma of those factors as measured (before the floor of 1; NaN without a standstill).
+  ImuNoiseScale psd_scale_sigma(const Vec3& arw_configured, const Vec3& vrw_configured) const;
+  // The factors as measured, below 1 too.
+  ImuNoiseScale psd_scale_unbounded(const Vec3& arw_configured, const Vec3& vrw_configured) const;
 };
 
 // imu and gnss in time order on one time base; the standstill: GNSS horizontal speed below max_speed_mps over

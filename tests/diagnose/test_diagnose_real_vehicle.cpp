@@ -90,6 +90,17 @@ TEST(DiagnoseRealVehicle, WithNothingHiddenTheInstalledNoiseIsMeasuredAndNothing
   const double vibration_psd = std::pow(v.sim.realism.vibration_factor, 2);
   EXPECT_NEAR(d["imu_noise"]["gyro_psd_scale"].as<double>() / vibration_psd, 1.0, 0.3);
   EXPECT_NEAR(d["imu_noise"]["accel_psd_scale"].as<double>() / vibration_psd, 1.0, 0.3);
+  // With its sigma, a few % of it (its calibration: test_installed_imu_noise GivenManyStandstills...).
+  for (const YAML::Node& c : d["self_calibration"])
+    if (c["name"].as<std::string>() == "imu_noise") {
+      const std::vector<double> estimate = c["estimate"].as<std::vector<double>>();
+      const std::vector<double> sigma = c["sigma"].as<std::vector<double>>();
+      ASSERT_EQ(sigma.size(), 2u);
+      for (int k = 0; k < 2; ++k) {
+        EXPECT_GT(sigma[k], 0.005 * estimate[k]) << k;
+        EXPECT_LT(sigma[k], 0.3 * estimate[k]) << k;
+      }
+    }
   EXPECT_EQ(d["verdict"]["add"].size(), 0u) << d["verdict"]["config_snippet"].as<std::string>();
 }
 

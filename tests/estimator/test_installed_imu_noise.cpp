@@ -2,6 +2,7 @@
 // vibration: white noise at 10x the datasheet's, measured over the GNSS standstill of the start.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -48,6 +49,53 @@ TEST(InstalledImuNoise,
     EXPECT_NEAR(psd.gyro, 100.0, 15.0);
     EXPECT_NEAR(psd.accel, 100.0, 15.0);
   }
+}
+
+// The measured noise comes with its sigma (issue 48, item 5): over independent standstills, each axis's PSD ratio
+// scatters about the simulated 100x by its stated sigma (z RMS within 0.7-1.4: 90 draws put the RMS within 0.15 of
+// its truth at 2 sigma). The factors (the median of the three axes, sigma stated as one axis's) scatter less.
+TEST(InstalledImuNoise, GivenManyStandstills_ThenTheMeasuredPsdScattersByItsStatedSigma) {
+  constexpr int kDraws = 15;
+  double z2_axis = 0.0, z2_factor = 0.0;
+  int n_axis = 0, n_factor = 0;
+  double mean_relative_sigma = 0.0;
+  for (int seed = 1; seed <= kDraws; ++seed) {
+    sim::SimRequest req;
+    req.grade = "3dm-gx2-typical";
+    req.scenario = "straight";  // 10 s at rest first
+    req.duration_s = 20.0;
+    req.gnss_rate_hz = 4.0;
+    req.seed = static_cast<unsigned>(300 + seed);
+    req.vehicle.vibration_factor = 10.0;  // installed N = 10x the grade's: PSD 100x
+    req.vehicle.engine_accel_mps2 = 0.0;
+    req.vehicle.engine_gyro_dps = 0.0;
+    const sim::SimResult sim = sim::simulate(req);
+    const FilterOptions datasheet = options_from_kfgins(sim.kfgins);
+    const InstalledImuNoise noise = measure_installed_imu_noise(sim.imu, sim.gnss);
+    ASSERT_TRUE(noise.found) << seed;
+    ASSERT_TRUE(noise.psd_relative_sigma > 0.0) << seed;
+    mean_relative_sigma += noise.psd_relative_sigma / kDraws;
+    for (int k = 0; k < 3; ++k) {
+      const double gyro = std::pow(noise.arw_rad_per_sqrt_s(k) / datasheet.arw_rad_per_sqrt_s(k), 2);
+      const double accel = std::pow(noise.vrw_mps_per_sqrt_s(k) / datasheet.vrw_mps_per_sqrt_s(k), 2);
+      for (const double ratio : {gyro, accel}) {
+        const double z = (ratio - 100.0) / (100.0 * noise.psd_relative_sigma);
+        z2_axis += z * z;
+        ++n_axis;
+      }
+    }
+    const ImuNoiseScale factor = noise.psd_scale(datasheet.arw_rad_per_sqrt_s, datasheet.vrw_mps_per_sqrt_s);
+    const ImuNoiseScale sigma = noise.psd_scale_sigma(datasheet.arw_rad_per_sqrt_s, datasheet.vrw_mps_per_sqrt_s);
+    z2_factor += std::pow((factor.gyro - 100.0) / sigma.gyro, 2) + std::pow((factor.accel - 100.0) / sigma.accel, 2);
+    n_factor += 2;
+  }
+  const double rms_axis = std::sqrt(z2_axis / n_axis), rms_factor = std::sqrt(z2_factor / n_factor);
+  std::printf("[ info ] relative sigma %.3f; z RMS per axis %.2f (%d), of the factors %.2f (%d)\n", mean_relative_sigma,
+              rms_axis, n_axis, rms_factor, n_factor);
+  EXPECT_GT(rms_axis, 0.7);
+  EXPECT_LT(rms_axis, 1.4);
+  EXPECT_LT(rms_factor, 1.2);  // stated as one axis's: never overconfident
+  EXPECT_GT(rms_factor, 0.4);  // nor idle: the median of three equal axes scatters 0.67 of one
 }
 
 // RTK at 1 Hz: the track moves by its own noise between fixes (2 cm horizontal, 2-3 cm vertical per fix: a

@@ -80,6 +80,7 @@ namespace {
 void measure_imu_noise(const DiagnoseInputs& in, est::FilterOptions& model, Diagnosis& d) {
   const est::InstalledImuNoise noise = est::measure_installed_imu_noise(in.imu, in.gnss);
   d.imu_noise_scale = noise.psd_scale(model.arw_rad_per_sqrt_s, model.vrw_mps_per_sqrt_s);
+  d.imu_noise_scale_sigma = noise.psd_scale_sigma(model.arw_rad_per_sqrt_s, model.vrw_mps_per_sqrt_s);
   d.imu_noise_standstill_s = noise.found ? noise.standstill_s : 0.0;
   if (d.imu_noise_scale.larger() < kApplyImuNoiseScale) return;
   const FilterRun configured = run_filter(in, model, nullptr);
@@ -112,7 +113,7 @@ void add_self_calibration_findings(Diagnosis& d) {
     SelfCalibration c;
     c.name = "imu_noise";
     c.estimate_si = Eigen::Vector2d(d.imu_noise_scale.gyro, d.imu_noise_scale.accel);
-    c.sigma_si = Eigen::Vector2d(nan, nan);
+    c.sigma_si = Eigen::Vector2d(d.imu_noise_scale_sigma.gyro, d.imu_noise_scale_sigma.accel);
     c.unit = "x the configured PSD (gyro, accel)";
     c.applied = d.imu_noise_applied;
     char b[160];

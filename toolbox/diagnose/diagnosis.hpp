@@ -1,6 +1,7 @@
 #pragma once
 // `ldv diagnose` as a library (DESIGN.md section 3): run the model, check it, screen every missing
 // effect, confirm the best by rerunning with it, stepwise; then the verdict and the rerun with it.
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -74,6 +75,7 @@ struct Diagnosis {
   // The configured IMU white-noise PSDs times these (gyro, accel) are what the data say (1: not measured or
   // not above the configuration); when applied, configured_check is the model check with the configured noise.
   est::ImuNoiseScale imu_noise_scale;
+  est::ImuNoiseScale imu_noise_scale_sigma{NAN, NAN};  // 1-sigma of the measured factors (NaN: none measured)
   double imu_noise_standstill_s = 0.0;  // the standstill it was measured over (0: none found)
   // The factors the GNSS position innovations call for on the stated variance, per solution quality, estimated apart
   // from the IMU's (FilterOptions::split_noise_adaptation, a pass of its own; not applied: the diagnosis judges the
