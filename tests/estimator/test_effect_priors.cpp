@@ -14,6 +14,7 @@
 #include "estimator/run/run_navigation.hpp"
 #include "estimator/state/state_layout.hpp"
 #include "sim/simulator.hpp"
+#include "tests/estimator/sim_run.hpp"
 
 namespace ldv::est {
 namespace {
@@ -115,6 +116,55 @@ TEST(EffectPriors, GivenATimeOffsetAddedWithoutAPrior_ThenAQuarterSecondLagIsEst
   EXPECT_LT(std::abs(estimate_s - truth_s), 3.0 * sigma_s);
   EXPECT_LT(sigma_s, 0.05);  // and the drive did pin it down
   EXPECT_EQ(f.faults().gate_rejections, 0);
+}
+
+// An effect added without a stated prior is learnt from the drive (issue 48, items 3 and 4): its default prior is as
+// wide as IMUs of any grade make it. Hidden at realistic sizes on drives with two 30 s outages, adding it from that
+// prior takes out at least 90 % of the outage drift the effect adds over a run that knows it exactly (the
+// tactical defaults, 100 urad, held a MEMS misalignment at zero and removed none of it). Not yet for every effect: a
+// MEMS accelerometer misalignment of 7 mrad, added so, takes out half of its drift (34.5 -> 30.2 m, known: 26.3 m;
+// its x and y parts couple gravity into the horizontal as a bias does and separate from it on pitch and roll only).
+struct HiddenEffectCase {
+  const char* grade;
+  const char* effect;  // as the simulator injects it, engineering units
+  const char* name;
+};
+double outage_drift_m(const sim::SimResult& sim, FilterOptions o) {
+  return test::evaluate(sim, o, 60.0).outage_drift_m;
+}
+
+TEST(EffectPriors, GivenAHiddenMisalignmentAddedWithoutAPrior_ThenTheDriveLearnsItAndItsErrorFalls) {
+  const HiddenEffectCase cases[] = {
+      {"hg1700-typical", "accel_misalignment=475,-400,450", "accel_misalignment"},    // ~2.2 mrad: tactical
+      {"3dm-gx2-typical", "gyro_misalignment=1444,-1200,1300", "gyro_misalignment"},  // ~6.5 mrad: consumer MEMS
+  };
+  for (const HiddenEffectCase& c : cases) {
+    SCOPED_TRACE(c.effect);
+    sim::SimRequest req;
+    req.grade = c.grade;
+    req.seed = 21;
+    req.duration_s = 900.0;
+    req.scenario = "drive";
+    req.gnss_rate_hz = 5.0;
+    req.outages = {{300.0, 30.0}, {600.0, 30.0}};
+    req.effects = {c.effect};
+    const sim::SimResult sim = sim::simulate(req);
+    const FilterOptions model = options_from_kfgins(sim.kfgins);
+    FilterOptions added = model, known = model;
+    added.add = known.add = {c.name};
+    const std::vector<double>& truth = sim.injected_effects.at(c.name);
+    Eigen::VectorXd truth_si(3);
+    truth_si << truth[0], truth[1], truth[2];
+    known.effect_priors[c.name] = {truth_si, Eigen::VectorXd::Constant(3, 1e-9)};
+    const double without = outage_drift_m(sim, model), with = outage_drift_m(sim, added),
+                 exact = outage_drift_m(sim, known);
+    std::printf(
+        "[ info ] %s on %s: largest outage drift %.3f m without it, %.3f m added from the default prior, "
+        "%.3f m known\n",
+        c.effect, c.grade, without, with, exact);
+    ASSERT_GT(without, 1.3 * exact) << "the effect must matter on this drive";
+    EXPECT_LT(with - exact, 0.1 * (without - exact));
+  }
 }
 
 }  // namespace
