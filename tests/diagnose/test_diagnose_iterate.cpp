@@ -10,6 +10,8 @@
 #include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -44,8 +46,9 @@ TEST(DiagnoseIterate, TwoHiddenEffectsAreAddedStepByStepAndTheTunedConfigUsesEve
   sim::SimResult s = sim::simulate(req);
   sim::write_outputs(s, (dir / "drive").string());
   const fs::path cfg = dir / "drive" / "kfgins.yaml", json = dir / "steps.json", tuned = dir / "tuned.yaml";
-  run("diagnose --kfgins-config " + cfg.string() + " --iterate --json " + json.string() + " --write-config " +
-          tuned.string() + " --quiet",
+  const fs::path truth_nav = dir / "drive" / "truth.nav";
+  run("diagnose --kfgins-config " + cfg.string() + " --truth " + truth_nav.string() + " --iterate --json " +
+          json.string() + " --write-config " + tuned.string() + " --quiet",
       dir / "diagnose.log");
 
   const YAML::Node d = YAML::LoadFile(json.string());  // JSON is YAML
@@ -90,6 +93,19 @@ TEST(DiagnoseIterate, TwoHiddenEffectsAreAddedStepByStepAndTheTunedConfigUsesEve
   const std::string nav =
       run("nav --kfgins-config " + tuned.string() + " --out " + (dir / "tuned.nav").string(), dir / "nav.log");
   EXPECT_NE(nav.find("gate rejections 0 "), std::string::npos) << nav;
+  // The tuned file's run is the diagnosis's "after" (issue 48, item 1): the same position error against the truth to
+  // 1 mm (3D RMS after the diagnosis's first 60 s; the diagnosis samples at 10 Hz, ldv compare every IMU epoch).
+  const YAML::Node c =
+      YAML::Load(run("compare --settle 60 --json " + (dir / "tuned.nav").string() + " " + truth_nav.string(),
+                     dir / "compare.json"))["components"];
+  const double tuned_rms_3d_m =
+      std::sqrt(std::pow(c["east"]["rms"].as<double>(), 2) + std::pow(c["north"]["rms"].as<double>(), 2) +
+                std::pow(c["down"]["rms"].as<double>(), 2));
+  const double after_rms_3d_m = d["truth"]["after"]["rms_pos_3d_m"].as<double>();
+  std::printf(
+      "[ info ] position error RMS 3D: diagnosis after %.4f m, ldv nav on the tuned file %.4f m (before %.3f m)\n",
+      after_rms_3d_m, tuned_rms_3d_m, d["truth"]["before"]["rms_pos_3d_m"].as<double>());
+  EXPECT_NEAR(tuned_rms_3d_m, after_rms_3d_m, 1e-3);
 
   // And it keeps what was found (issue 48, 1): each added effect's estimate is its prior there, with the estimated
   // sigma, in the effect's printed unit (ldv.priors), so `ldv nav` starts from it instead of zero

@@ -245,11 +245,21 @@ Diagnosis diagnose(const DiagnoseInputs& in, const DiagnoseOptions& opt) {
   if (d.add.empty()) {
     d.after = d.before;
   }
-  d.labels_after = classify_epochs(d.after.epochs);
-  d.check_after = d.add.empty() ? d.steps.front().check : d.steps.back().check;
   for (const std::string& name : d.add)
     for (const EffectEstimate& e : d.after.estimates)
       if (e.name == name) d.added_estimates.push_back(e);
+  if (!d.add.empty()) {
+    // "After" is the tuned model as --write-config states it and `ldv nav` runs it (issue 48, item 1): each added
+    // effect starts from its estimate with its sigma as the prior. The estimates reported stay the last step's
+    // (the tuned run's own would count the drive twice).
+    for (const EffectEstimate& e : d.added_estimates)
+      if (e.value_si.allFinite() && e.std_si.allFinite()) set_prior(current, e.name, e.value_si, e.std_si);
+    d.after = run_filter(in, current);
+    ++d.filter_runs;
+    d.final_options = current;
+  }
+  d.labels_after = classify_epochs(d.after.epochs);
+  d.check_after = d.add.empty() ? d.steps.front().check : d.steps.back().check;
   d.truth_before = truth_error(d.before, d.labels_before, in.truth, opt.truth_skip_s);
   d.truth_after = truth_error(d.after, d.labels_after, in.truth, opt.truth_skip_s);
   add_self_calibration_findings(d);

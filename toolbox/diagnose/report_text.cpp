@@ -219,7 +219,11 @@ void print_report(std::ostream& out, const Diagnosis& d) {
     else if (!t.coverage_note.empty())
       out << "  only part compared: " << t.coverage_note << "\n";
     print_truth(out, "before:", d.truth_before);
-    if (!d.add.empty()) print_truth(out, "after: ", d.truth_after);
+    if (!d.add.empty()) {
+      print_truth(out, "after: ", d.truth_after);
+      out << "  (after: the tuned model, each added effect started from its estimate and sigma, as --write-config "
+             "writes it and ldv nav runs it)\n";
+    }
   }
   print_steps(out, d);
   out << "\n  " << d.filter_runs << " filter runs, " << fmt("%.1f", d.cpu_s) << " s CPU\n";
