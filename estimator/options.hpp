@@ -70,6 +70,14 @@ struct FilterOptions {
   // velocity takes a random walk of density |f x e| sqrt(tau0) (tau0 the IMU sample period), and the reported
   // attitude sigma holds Q itself (nav_filter.cpp). 0: none (KF-GINS has no such term).
   Vec3 gyro_quantization_rad = Vec3::Zero();
+  // The 1-sigma [s] of the IMU samples' time tags about the instants the sensor sampled (a host that stamps on
+  // reading, a sensor read faster than it samples). Each increment then spans a wrong interval: its error is the
+  // change of the rate since the sample before times the tag's error, a random walk in attitude and velocity that
+  // grows with the motion's jerk and vanishes at rest (nav_filter.cpp). 0: tags exact.
+  double imu_stamp_jitter_s = 0.0;
+  // run_navigation measures it from the tags (imu_stamp_jitter.hpp) unless ldv.imu_stamp_jitter_s states it or the
+  // run is KF-GINS's (--kfgins-compatible).
+  bool imu_stamp_jitter_from_tags = true;
 
   BlockOptions gyro_bias, accel_bias, gyro_scale, accel_scale;
   BlockOptions gyro_misalignment, accel_misalignment, g_sensitivity;

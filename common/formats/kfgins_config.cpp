@@ -135,6 +135,8 @@ const std::vector<std::string> kLdvKeys = {
     "moving_bias_accel_rw_mps2_sqrt_s", "moving_bias_accel_ramp_mps3",
     // the gyros' Allan Q [rad]: a white error of the integrated angle (estimator/options.hpp)
     "gyro_quantization_rad",
+    // the 1-sigma of the IMU time tags about the sampling instants [s] (estimator/options.hpp)
+    "imu_stamp_jitter_s",
     // land-vehicle aids (estimator/options.hpp AidOptions)
     "aids", "vehicle_mounting_deg", "nhc_std_mps", "odometer_std_mps", "odometer_lever_arm_m", "odometer_scale",
     // inputs
@@ -170,6 +172,7 @@ const LdvNumberKey kLdvNumbers[] = {
     {"moving_bias_accel_rw_mps2_sqrt_s", 0.0, 2000.0, "m/s^2/sqrt(s)"},
     {"moving_bias_accel_ramp_mps3", 0.0, 2000.0, "m/s^3"},
     {"gyro_quantization_rad", 0.0, 0.1, "rad"},
+    {"imu_stamp_jitter_s", 0.0, 1.0, "s"},
     {"vehicle_mounting_deg", -360.0, 360.0, "deg"},
     {"nhc_std_mps", 0.0, 100.0, "m/s"},
     {"odometer_std_mps", 0.0, 100.0, "m/s"},

@@ -250,6 +250,15 @@ std::vector<ImuIncrement> read_tagged_imu_csv(const std::string& csv_path, const
     inc.dvel_b_mps = 0.5 * (raw[k - 1].f_b_mps2 + raw[k].f_b_mps2) * inc.dt_s;
     out.push_back(inc);
   }
+  rep.distinct_sample_tags_s.clear();
+  rep.repeated_rows = 0;
+  for (size_t k = 0; k < raw.size(); ++k) {
+    if (k > 0 && raw[k].w_b_rad_s == raw[k - 1].w_b_rad_s && raw[k].f_b_mps2 == raw[k - 1].f_b_mps2) {
+      ++rep.repeated_rows;
+      continue;
+    }
+    rep.distinct_sample_tags_s.push_back(offset + rate * raw[k].counter_s - first_week_s);
+  }
   std::vector<long> line_of;  // of each increment: the line of the sample that ends it
   line_of.reserve(out.size());
   for (size_t k = 1; k < raw.size(); ++k) line_of.push_back(raw[k].line);

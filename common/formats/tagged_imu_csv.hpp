@@ -55,6 +55,11 @@ struct TaggedImuCsvReport {
   double min_latency_s = 0.0;   // 0 with the lower-envelope fit; negative when the host tags are distorted
   double median_latency_s = 0.0;
   double p99_latency_s = 0.0;
+  // The first tag of each distinct sample [s, the increments' time base] and how many rows repeated the sample
+  // before them (a sensor read faster than it samples): the tags' jitter is measured from these
+  // (estimator/calibrate/imu_stamp_jitter.hpp); the trapezoid's increments no longer show the repeats.
+  std::vector<double> distinct_sample_tags_s;
+  long repeated_rows = 0;
 };
 
 std::vector<ImuIncrement> read_tagged_imu_csv(const std::string& csv_path, const std::string& tag_path,

@@ -304,6 +304,7 @@ void NavFilter::process_imu(const ImuIncrement& raw) {
     apply_next_pending();
   }
   if (rem.dt_s > 0.0) propagate_sample(rem);
+  accumulate_stamp_jitter(raw);
 
   const MechanizationStep& st = c_.mech.last();
   const bool stat = c_.detector.add(st.dt_s, st.omega_ib_b_rad_s, st.f_b_mps2);
@@ -333,6 +334,23 @@ void NavFilter::process_imu(const ImuIncrement& raw) {
     return;
   }
   if (c_.nav.t_s - c_.last_health_t_s >= kHealthPeriod_s) check_health(true);
+}
+
+void NavFilter::accumulate_stamp_jitter(const ImuIncrement& raw) {
+  if (!(opt_.imu_stamp_jitter_s > 0.0) || !(raw.dt_s > 0.0)) return;
+  const Vec3 omega = raw.dtheta_b_rad / raw.dt_s, f = raw.dvel_b_mps / raw.dt_s;
+  if (c_.have_prev_rates) {
+    // Increment k spans [t_k-1 + e_k-1, t_k + e_k] instead of [t_k-1, t_k]: summed, the errors telescope to
+    // sum_k e_k (rate_k - rate_k+1), one independent term per sample, common to the three axes.
+    const Mat3 C = c_.nav.C_b_n();
+    const Vec3 d_omega_n = C * (omega - c_.prev_omega_b_rad_s), d_f_n = C * (f - c_.prev_f_b_mps2);
+    const double var = opt_.imu_stamp_jitter_s * opt_.imu_stamp_jitter_s;
+    c_.acc_jitter_att_n += var * d_omega_n * d_omega_n.transpose();
+    c_.acc_jitter_vel_n += var * d_f_n * d_f_n.transpose();
+  }
+  c_.prev_omega_b_rad_s = omega;
+  c_.prev_f_b_mps2 = f;
+  c_.have_prev_rates = true;
 }
 
 void NavFilter::run_aids() {
@@ -468,7 +486,11 @@ void NavFilter::flush_covariance() {
     Qv += f_cross * est::attitude_quantization_cov_n(C, opt_.gyro_quantization_rad) * f_cross.transpose() *
           (T * c_.imu_interval_s);
   }
-  const Mat3 Qp = C * opt_.arw_rad_per_sqrt_s.cwiseAbs2().asDiagonal() * C.transpose() * (T * q_scale.gyro);
+  Mat3 Qp = C * opt_.arw_rad_per_sqrt_s.cwiseAbs2().asDiagonal() * C.transpose() * (T * q_scale.gyro);
+  Qv += c_.acc_jitter_vel_n;
+  Qp += c_.acc_jitter_att_n;
+  c_.acc_jitter_vel_n.setZero();
+  c_.acc_jitter_att_n.setZero();
   P.block<3, 3>(kVel, kVel) += Qv;
   P.block<3, 3>(kAtt, kAtt) += Qp;
   P.diagonal().tail(m) += q_c_ * T;

@@ -100,6 +100,8 @@ class NavFilter {
   // A white-noise density configured as 0 (a datasheet that prints none) takes the one given, axis by axis,
   // e.g. what a standstill in the data showed: the floor below is a factor and cannot raise a 0. Before
   // initialize (the static detector reads the densities there). Returns whether anything was filled.
+  // The IMU tags' scatter [s] measured from the data (FilterOptions::imu_stamp_jitter_s), before the first sample.
+  void set_imu_stamp_jitter(double sigma_s) { opt_.imu_stamp_jitter_s = sigma_s; }
   bool fill_unset_white_noise(const Vec3& arw_rad_per_sqrt_s, const Vec3& vrw_mps_per_sqrt_s);
   // The floor: the noise as installed, e.g. what a standstill in the data showed (installed_imu_noise.hpp), set
   // after initialize; without it the configuration. The adaptation never goes below it.
@@ -151,6 +153,11 @@ class NavFilter {
     Mechanization mech;
     double acc_T_s = 0.0;
     Vec3 acc_dv_n = Vec3::Zero();
+    // The stamp jitter's process noise since the last covariance step (FilterOptions::imu_stamp_jitter_s), n frame,
+    // and the rates of the IMU sample before.
+    Mat3 acc_jitter_att_n = Mat3::Zero(), acc_jitter_vel_n = Mat3::Zero();
+    Vec3 prev_omega_b_rad_s = Vec3::Zero(), prev_f_b_mps2 = Vec3::Zero();
+    bool have_prev_rates = false;
     Eigen::Matrix<double, 9, Eigen::Dynamic> acc_B;  // accumulated F_ne * dt
     StaticDetector detector{0.5, 0.05, 0.01};
     Vec3 f_n_smooth_mps2 = Vec3::Zero();  // specific force in n, first-order low pass (window / 4: little lag)
@@ -177,6 +184,8 @@ class NavFilter {
 
   void process_imu(const ImuIncrement& raw);
   void propagate_sample(const ImuIncrement& raw_part);
+  // The stamp jitter's process noise of one raw IMU sample (FilterOptions::imu_stamp_jitter_s).
+  void accumulate_stamp_jitter(const ImuIncrement& raw);
   // Coasts from the state's epoch to t_end_s inside a hole in the IMU data that began at hole_start_s: the
   // uncertainty opens by what the hole's length so far allows, whichever pieces it is coasted in.
   void coast_over_imu_gap(double hole_start_s, double t_end_s);

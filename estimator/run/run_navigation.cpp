@@ -7,6 +7,7 @@
 
 #include "common/geo/earth_model.hpp"
 #include "common/io/input_error.hpp"
+#include "estimator/calibrate/imu_stamp_jitter.hpp"
 #include "estimator/calibrate/installed_imu_noise.hpp"
 #include "estimator/filter/nav_filter.hpp"
 #include "estimator/ins/alignment.hpp"
@@ -35,6 +36,7 @@ double ldv_number(const KfGinsConfig& cfg, const char* key, double fallback) { r
 void make_kfgins_compatible(FilterOptions& o, const KfGinsConfig& cfg) {
   o.robust_update = false;
   o.adapt_imu_noise = false;
+  o.imu_stamp_jitter_from_tags = false;
   o.gate_measurements = false;
   o.measurement_snap_s = 1e-3;
   if (!has_ldv_key(cfg, "cov_period_s")) o.cov_period_s = 1e-6;
@@ -95,6 +97,8 @@ FilterOptions options_from_kfgins(const KfGinsConfig& cfg) {
   o.aids.mounting_rpy_rad = vec3_key("vehicle_mounting_deg", o.aids.mounting_rpy_rad, kDegToRad);
   o.odometer_lever_arm.init = vec3_key("odometer_lever_arm_m", o.odometer_lever_arm.init, 1.0);
   o.gyro_quantization_rad = vec3_key("gyro_quantization_rad", o.gyro_quantization_rad, 1.0);
+  o.imu_stamp_jitter_s = ldv_key<double>(cfg, "imu_stamp_jitter_s", o.imu_stamp_jitter_s);
+  if (has_ldv_key(cfg, "imu_stamp_jitter_s")) o.imu_stamp_jitter_from_tags = false;
   // geoldv51's moving bias per term, where the configuration has them (ldv sim writes the grade's): the
   // Gauss-Markov is B alone (imunoise's gbstd merges K into it), K drives the random-walk states, R is the
   // ramp rate's prior. Each key is optional.
@@ -255,6 +259,10 @@ RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vecto
     noise_floor = noise.psd_scale(filter.options().arw_rad_per_sqrt_s, filter.options().vrw_mps_per_sqrt_s);
     sum.imu_noise_standstill_s = noise.found ? noise.standstill_s : 0.0;
     if (noise.found) standstill_f_scatter_mps2 = noise.f_norm_scatter_mps2;
+  }
+  if (filter.options().imu_stamp_jitter_from_tags) {
+    sum.imu_stamp_jitter = measure_imu_stamp_jitter(imu);
+    if (sum.imu_stamp_jitter.found) filter.set_imu_stamp_jitter(sum.imu_stamp_jitter.sigma_s);
   }
   SessionOptions so = session_options_from(cfg, filter.options(), alignment);
   so.imu_noise_floor = noise_floor;

@@ -6,6 +6,7 @@
 
 #include "common/formats/kfgins_config.hpp"
 #include "common/formats/nav_types.hpp"
+#include "estimator/calibrate/imu_stamp_jitter.hpp"
 #include "estimator/filter/records.hpp"
 #include "estimator/filter/status.hpp"
 #include "estimator/ins/alignment.hpp"
@@ -62,6 +63,8 @@ struct RunSummary {
   // fill_unset_white_noise), in words with the values; empty when none.
   std::string white_noise_filled;
   double imu_noise_scale_end = 1.0;
+  // With FilterOptions::imu_stamp_jitter_from_tags: the IMU tags' scatter about the sensor's sampling, modelled.
+  ImuStampJitter imu_stamp_jitter;
 };
 
 // Runs the files through a NavSession (nav_session.hpp: the same session `ldv nav --lcm-log` and the fusion

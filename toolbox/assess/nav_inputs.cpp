@@ -511,6 +511,14 @@ NavInputs load_nav_inputs(const NavInputArgs& a) {
     in.imu = read_tagged_imu_csv(imu_path, a.imu_tag.empty() ? imu_path + ".tag" : a.imu_tag, {}, &rep);
     in.file_counts.push_back({"IMU", imu_path, rep.samples, rep.dropped});
     in.imu_gaps = rep.long_gaps;
+    // The tags' jitter from the rows themselves: the trapezoid's increments no longer show which rows repeated.
+    if (in.options.imu_stamp_jitter_from_tags) {
+      in.imu_stamp_jitter = est::measure_imu_stamp_jitter(rep.distinct_sample_tags_s, rep.samples, rep.repeated_rows);
+      if (in.imu_stamp_jitter.found) {
+        in.options.imu_stamp_jitter_s = in.imu_stamp_jitter.sigma_s;
+        in.options.imu_stamp_jitter_from_tags = false;
+      }
+    }
     calibrate();  // in the device axes, as `ldv calib static` saw them
     for (ImuIncrement& s : in.imu) {
       s.dtheta_b_rad = remap(s.dtheta_b_rad, a.csv_axes);

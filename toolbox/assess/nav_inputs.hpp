@@ -26,6 +26,7 @@
 #include "common/io/dropped_records.hpp"
 #include "estimator/calibrate/gnss_velocity_check.hpp"
 #include "estimator/calibrate/imu_latency.hpp"
+#include "estimator/calibrate/imu_stamp_jitter.hpp"
 #include "estimator/options.hpp"
 #include "estimator/update/observation.hpp"
 
@@ -101,7 +102,9 @@ struct NavInputs {
   } imu_latency_refined;
   // What was decided about the GNSS velocities (estimator/calibrate/gnss_velocity_check.hpp), "" if none.
   std::string gnss_velocity_note;
-  std::optional<est::GnssVelocityCheck> gnss_velocity_check;  // what that decision rested on, when it was made
+  std::optional<est::GnssVelocityCheck> gnss_velocity_check;
+  // The IMU tags' jitter measured from a tagged CSV's rows (run_navigation measures it from other files' increments).
+  est::ImuStampJitter imu_stamp_jitter;      // what that decision rested on, when it was made
   std::vector<InputFileCounts> file_counts;  // IMU then GNSS
   std::vector<ImuTimeGap> imu_gaps;          // IMU intervals > 10 median intervals (kept: the estimator decides)
   // Readings of the other sensors (odometer with --aid odometer), in time order: run_navigation's `others`.

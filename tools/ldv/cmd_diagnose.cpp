@@ -177,6 +177,25 @@ void run_diagnose(const DiagnoseArgs& a) {
     c.note = loaded.gnss_velocity_note;
     d.self_calibration.push_back(c);
   }
+  // The IMU tags' jitter, measured from the rows (a tagged CSV) or the increments, and modelled in every run.
+  const est::ImuStampJitter& jitter =
+      loaded.imu_stamp_jitter.found ? loaded.imu_stamp_jitter : d.before.summary.imu_stamp_jitter;
+  if (jitter.found) {
+    diag::SelfCalibration c;
+    c.name = "imu_stamp_jitter";
+    c.estimate_si = Eigen::VectorXd::Constant(1, jitter.sigma_s);
+    c.sigma_si = Eigen::VectorXd::Constant(1, jitter.sigma_sigma_s);
+    c.unit = "ms";
+    c.print_scale = 1e3;
+    c.applied = true;
+    char b[240];
+    std::snprintf(b, sizeof b,
+                  "IMU tags off the sensor's %.1f Hz sampling (%.0f %% of the rows repeat the sample before): each "
+                  "increment's error, the rate's change times the tag's, modelled in every run",
+                  1.0 / jitter.sample_interval_s, 100.0 * jitter.repeated_fraction);
+    c.note = b;
+    d.self_calibration.push_back(c);
+  }
   diag::print_report(std::cout, d);
   if (!a.json.empty()) diag::write_json(d, a.json);
   if (!a.write_config.empty()) {

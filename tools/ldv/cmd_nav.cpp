@@ -343,6 +343,12 @@ void run_nav(const NavArgs& a) {
     print_summary(a.smooth ? "files, smoothed" : "files", sum.imu_samples, sum.t_start_s, sum.t_end_s, sum.gnss_fixes,
                   sum.initialisation, *filter, elapsed, nav_path, sum.imu_noise_standstill_s);
     if (!sum.white_noise_filled.empty()) std::fprintf(stderr, "  %s\n", sum.white_noise_filled.c_str());
+    const est::ImuStampJitter& j = in.imu_stamp_jitter.found ? in.imu_stamp_jitter : sum.imu_stamp_jitter;
+    if (j.found)
+      std::fprintf(stderr,
+                   "  IMU time tags: %.2f +- %.2f ms off the sensor's %.1f Hz sampling (%.0f %% of the rows repeat the "
+                   "sample before): modelled, each increment's error the rate's change times the tag's\n",
+                   1e3 * j.sigma_s, 1e3 * j.sigma_sigma_s, 1.0 / j.sample_interval_s, 100.0 * j.repeated_fraction);
   }
 }
 
