@@ -80,7 +80,10 @@ namespace {
 void measure_imu_noise(const DiagnoseInputs& in, est::FilterOptions& model, Diagnosis& d) {
   const est::InstalledImuNoise noise = est::measure_installed_imu_noise(in.imu, in.gnss);
   d.imu_noise_scale = noise.psd_scale(model.arw_rad_per_sqrt_s, model.vrw_mps_per_sqrt_s);
-  d.imu_noise_scale_sigma = noise.psd_scale_sigma(model.arw_rad_per_sqrt_s, model.vrw_mps_per_sqrt_s);
+  if (noise.found) {
+    d.imu_noise_measured = noise.psd_scale_unbounded(model.arw_rad_per_sqrt_s, model.vrw_mps_per_sqrt_s);
+    d.imu_noise_measured_sigma = noise.psd_scale_sigma(model.arw_rad_per_sqrt_s, model.vrw_mps_per_sqrt_s);
+  }
   d.imu_noise_standstill_s = noise.found ? noise.standstill_s : 0.0;
   if (d.imu_noise_scale.larger() < kApplyImuNoiseScale) return;
   const FilterRun configured = run_filter(in, model, nullptr);
@@ -112,8 +115,8 @@ void add_self_calibration_findings(Diagnosis& d) {
   if (d.imu_noise_standstill_s > 0.0) {
     SelfCalibration c;
     c.name = "imu_noise";
-    c.estimate_si = Eigen::Vector2d(d.imu_noise_scale.gyro, d.imu_noise_scale.accel);
-    c.sigma_si = Eigen::Vector2d(d.imu_noise_scale_sigma.gyro, d.imu_noise_scale_sigma.accel);
+    c.estimate_si = Eigen::Vector2d(d.imu_noise_measured.gyro, d.imu_noise_measured.accel);
+    c.sigma_si = Eigen::Vector2d(d.imu_noise_measured_sigma.gyro, d.imu_noise_measured_sigma.accel);
     c.unit = "x the configured PSD (gyro, accel)";
     c.applied = d.imu_noise_applied;
     char b[160];

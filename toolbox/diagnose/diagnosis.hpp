@@ -75,7 +75,8 @@ struct Diagnosis {
   // The configured IMU white-noise PSDs times these (gyro, accel) are what the data say (1: not measured or
   // not above the configuration); when applied, configured_check is the model check with the configured noise.
   est::ImuNoiseScale imu_noise_scale;
-  est::ImuNoiseScale imu_noise_scale_sigma{NAN, NAN};  // 1-sigma of the measured factors (NaN: none measured)
+  // The factors as measured (below 1 too: a datasheet that overstates the noise) and their 1-sigma (NaN: none).
+  est::ImuNoiseScale imu_noise_measured{NAN, NAN}, imu_noise_measured_sigma{NAN, NAN};
   double imu_noise_standstill_s = 0.0;  // the standstill it was measured over (0: none found)
   // The factors the GNSS position innovations call for on the stated variance, per solution quality, estimated apart
   // from the IMU's (FilterOptions::split_noise_adaptation, a pass of its own; not applied: the diagnosis judges the

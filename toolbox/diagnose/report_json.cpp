@@ -170,8 +170,6 @@ std::string diagnosis_json(const Diagnosis& d) {
   o << "  \"imu_noise\": {\"psd_scale\": " << num(d.imu_noise_scale.larger())
     << ", \"gyro_psd_scale\": " << num(d.imu_noise_scale.gyro)
     << ", \"accel_psd_scale\": " << num(d.imu_noise_scale.accel)
-    << ", \"gyro_psd_scale_sigma\": " << num(d.imu_noise_scale_sigma.gyro)
-    << ", \"accel_psd_scale_sigma\": " << num(d.imu_noise_scale_sigma.accel)
     << ", \"applied\": " << (d.imu_noise_applied ? "true" : "false") << "},\n";
   o << "  \"steps\": [\n    " << configured_step
     << list_items(d.steps.size(), [&](size_t i) {

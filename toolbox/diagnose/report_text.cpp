@@ -161,8 +161,10 @@ void print_report(std::ostream& out, const Diagnosis& d) {
   out << ")\n";
   if (d.imu_noise_standstill_s > 0.0)
     out << "  IMU noise as installed (a " << fmt("%.0f", d.imu_noise_standstill_s) << " s GNSS standstill): gyro x"
-        << fmt("%.1f", d.imu_noise_scale.gyro) << " +- " << fmt("%.1f", d.imu_noise_scale_sigma.gyro) << ", accel x"
-        << fmt("%.1f", d.imu_noise_scale.accel) << " +- " << fmt("%.1f", d.imu_noise_scale_sigma.accel)
+        << fmt("%.1f", d.imu_noise_scale.gyro) << " (measured " << fmt("%.3g", d.imu_noise_measured.gyro) << " +- "
+        << fmt("%.2g", d.imu_noise_measured_sigma.gyro) << "), accel x" << fmt("%.1f", d.imu_noise_scale.accel)
+        << " (measured " << fmt("%.3g", d.imu_noise_measured.accel) << " +- "
+        << fmt("%.2g", d.imu_noise_measured_sigma.accel) << ")"
         << " the configured white-noise PSD"
         << (d.imu_noise_applied ? ": the diagnosis runs with it (vibration, or a datasheet value)"
                                 : ": within 2x, the configured noise kept")
