@@ -6,6 +6,7 @@
 #include <type_traits>
 
 #include "common/geo/earth_model.hpp"
+#include "estimator/calibrate/imu_stamp_jitter.hpp"
 #include "estimator/calibrate/installed_imu_noise.hpp"
 #include "estimator/filter/nav_filter.hpp"
 #include "estimator/update/sensor_names.hpp"
@@ -348,6 +349,19 @@ void NavSession::measure_noise_before_start() {
   noise_measured_ = true;
   const std::vector<ImuIncrement> imu(pre_start_imu_.begin(), pre_start_imu_.end());
   pre_start_imu_.clear();
+  // A live session's tags, as run_navigation measures a file's: from the samples before the start.
+  std::string jitter_note;
+  if (filter_.options().imu_stamp_jitter_from_tags && filter_.options().imu_stamp_jitter_s == 0.0) {
+    const ImuStampJitter jitter = measure_imu_stamp_jitter(imu);
+    if (jitter.found) {
+      filter_.set_imu_stamp_jitter(jitter.sigma_s);
+      char b[160];
+      std::snprintf(b, sizeof b, "; IMU tags %.2f ms off the sensor's %.1f Hz sampling: modelled", 1e3 * jitter.sigma_s,
+                    1.0 / jitter.sample_interval_s);
+      jitter_note = b;
+    }
+  }
+  noise_note_ = jitter_note;
   const InstalledImuNoise noise = measure_installed_imu_noise(imu, pre_start_gnss_);
   pre_start_gnss_.clear();
   if (!noise.found) return;
@@ -361,7 +375,7 @@ void NavSession::measure_noise_before_start() {
                 "configured PSD%s",
                 noise.standstill_s, o_.imu_noise_floor->gyro, o_.imu_noise_floor->accel,
                 filled ? " (a white noise configured as 0 took the standstill's)" : "");
-  noise_note_ = b;
+  noise_note_ = b + jitter_note;
 }
 
 // A start that needed no standstill (a given or saved state) measures the IMU noise as installed over the first
