@@ -19,6 +19,9 @@ struct ImuStampJitter {
   double repeated_fraction = 0.0;  // rows that repeat the sample before them exactly
   int windows = 0;
   static constexpr int kWindowSamples = 200;
+  // Worth a word: above a thousandth of the interval (below, the increments' error is a millionth of the rate's
+  // change: the tags are the sensor's own, to their printed digits).
+  bool noticeable() const { return found && sigma_s > 1e-3 * sample_interval_s; }
 };
 
 // From increments that each hold one sample's rate (a KF-GINS imu.txt, the simulator): a repeat has the rates of

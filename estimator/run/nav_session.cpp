@@ -353,8 +353,8 @@ void NavSession::measure_noise_before_start() {
   std::string jitter_note;
   if (filter_.options().imu_stamp_jitter_from_tags && filter_.options().imu_stamp_jitter_s == 0.0) {
     const ImuStampJitter jitter = measure_imu_stamp_jitter(imu);
-    if (jitter.found) {
-      filter_.set_imu_stamp_jitter(jitter.sigma_s);
+    if (jitter.found) filter_.set_imu_stamp_jitter(jitter.sigma_s);
+    if (jitter.noticeable()) {
       char b[160];
       std::snprintf(b, sizeof b, "; IMU tags %.2f ms off the sensor's %.1f Hz sampling: modelled", 1e3 * jitter.sigma_s,
                     1.0 / jitter.sample_interval_s);

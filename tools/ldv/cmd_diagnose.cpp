@@ -180,7 +180,7 @@ void run_diagnose(const DiagnoseArgs& a) {
   // The IMU tags' jitter, measured from the rows (a tagged CSV) or the increments, and modelled in every run.
   const est::ImuStampJitter& jitter =
       loaded.imu_stamp_jitter.found ? loaded.imu_stamp_jitter : d.before.summary.imu_stamp_jitter;
-  if (jitter.found) {
+  if (jitter.noticeable()) {
     diag::SelfCalibration c;
     c.name = "imu_stamp_jitter";
     c.estimate_si = Eigen::VectorXd::Constant(1, jitter.sigma_s);

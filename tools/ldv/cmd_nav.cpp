@@ -344,7 +344,8 @@ void run_nav(const NavArgs& a) {
                   sum.initialisation, *filter, elapsed, nav_path, sum.imu_noise_standstill_s);
     if (!sum.white_noise_filled.empty()) std::fprintf(stderr, "  %s\n", sum.white_noise_filled.c_str());
     const est::ImuStampJitter& j = in.imu_stamp_jitter.found ? in.imu_stamp_jitter : sum.imu_stamp_jitter;
-    if (j.found)
+    // (a simulator's or a device clock's tags: nothing to say)
+    if (j.noticeable())
       std::fprintf(stderr,
                    "  IMU time tags: %.2f +- %.2f ms off the sensor's %.1f Hz sampling (%.0f %% of the rows repeat the "
                    "sample before): modelled, each increment's error the rate's change times the tag's\n",
