@@ -496,6 +496,7 @@ void NavSession::run_heading_trial(bool at_end) {
       return;
     }
   }
+  body_heading_ = BodyHeading{std::remainder(best_dyaw, 2.0 * kPi), step, n, misfit.has_value()};
   al.state = turned_about_down(al.state, best_dyaw, filter_.options().lever_arm.init);
   al.std.att_rad.z() = std::max(al.std.att_rad.z(), 0.5 * step);
   al.method += " (best of " + std::to_string(n) + " body headings" + (misfit ? " by the accelerations" : "") +

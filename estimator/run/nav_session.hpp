@@ -109,6 +109,14 @@ class NavSession {
   // A turn-on gyro bias the alignment's static start showed, taken out of every increment (else 0).
   const Vec3& gyro_bias_seed_rad_s() const { return gyro_bias_seed_rad_s_; }
   const Vec3& gyro_bias_seed_std_rad_s() const { return gyro_bias_seed_std_rad_s_; }  // 0 when not measured
+  // The body heading an unknown mounting was found at (course_hypotheses > 1): the body x axis from the GNSS course
+  // and the spacing of the headings tried. Unset when none was tried.
+  struct BodyHeading {
+    double from_course_rad = 0.0, spacing_rad = 0.0;
+    int tried = 0;
+    bool by_accelerations = false;  // else by the innovations of a filter per heading
+  };
+  const std::optional<BodyHeading>& body_heading() const { return body_heading_; }
   // The filter's initial epoch, and the IMU noise floor it runs with (FilterOptions::adapt_imu_noise).
   double started_at_s() const { return started_at_s_; }
   const ImuNoiseScale& imu_noise_floor() const { return imu_noise_floor_; }
@@ -175,6 +183,7 @@ class NavSession {
   double noise_standstill_s_ = 0.0;      // the standstill the noise was measured over (0: none found)
   std::optional<double> still_since_s_;  // navigating: the current standstill began (measure_noise_while_navigating)
   static constexpr double kMinNoiseStandstill_s = 10.0;
+  std::optional<BodyHeading> body_heading_;
   std::string noise_note_;  // what measure_noise_before_start found, for the initialisation line
   std::deque<QueuedImu> imu_queue_;
   std::deque<GnssFix> gnss_queue_;          // fixes not yet handed over, in time order

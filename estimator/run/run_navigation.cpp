@@ -297,6 +297,7 @@ RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vecto
   sum.gnss_fixes = session.gnss_fixes_used();
   sum.other_observations = session.other_readings_used();
   sum.initialisation = session.initialisation();
+  sum.body_heading = session.body_heading();
   sum.gyro_bias_seed_rad_s = session.gyro_bias_seed_rad_s();
   sum.gyro_bias_seed_std_rad_s = session.gyro_bias_seed_std_rad_s();
   sum.imu_noise_floor = session.imu_noise_floor();

@@ -65,6 +65,7 @@ struct RunSummary {
   double imu_noise_scale_end = 1.0;
   // With FilterOptions::imu_stamp_jitter_from_tags: the IMU tags' scatter about the sensor's sampling, modelled.
   ImuStampJitter imu_stamp_jitter;
+  std::optional<NavSession::BodyHeading> body_heading;  // NavSession::body_heading
 };
 
 // Runs the files through a NavSession (nav_session.hpp: the same session `ldv nav --lcm-log` and the fusion
