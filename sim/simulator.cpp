@@ -133,6 +133,7 @@ void record_vehicle_effects(const VehicleRealism& v, const ImuGrade& grade, doub
     e["shocks.count"] = {static_cast<double>(res.shocks.size())};
   }
   if (v.imu_latency_s > 0.0) e["imu_latency"] = {v.imu_latency_s};
+  if (v.imu_stamp_jitter_s > 0.0) e["imu_stamp_jitter"] = {v.imu_stamp_jitter_s};
   if (v.mounted || v.odometer) e["vehicle_mounting"] = as_vector(v.mounting_rpy_rad);
   if (v.gnss_velocity_lag_s > 0.0) e["gnss_velocity_lag"] = {v.gnss_velocity_lag_s};
   if (v.gnss_velocity_noise_factor != 1.0) e["gnss_velocity_noise_factor"] = {v.gnss_velocity_noise_factor};
@@ -261,6 +262,25 @@ SimResult simulate(const SimRequest& req, const std::function<void(double)>& pro
     // the IMU's too: the GNSS tags are GPS time, as a receiver's solution epochs are, and the truth is on them.
     res.imu[k].t_s += veh.imu_latency_s - time_offset_s;
     if (progress && k % (n / 10 + 1) == 0) progress(0.85 + 0.1 * k / n);
+  }
+  if (veh.imu_stamp_jitter_s > 0.0) {
+    // A host that tags each sample off its sampling instant (uniform, +-sqrt(3) std) and integrates the sample's
+    // rate over the interval between its tag and the one before: what estimator/calibrate/imu_stamp_jitter finds.
+    Rng rng(req.seed, "imu_stamp_jitter");
+    const double half_width_s = std::sqrt(3.0) * veh.imu_stamp_jitter_s;
+    if (half_width_s >= 0.5 * dt)
+      throw InputError("--imu-stamp-jitter", 0,
+                       "a std below " + std::to_string(0.5 * dt / std::sqrt(3.0)) +
+                           " s at this IMU rate (tags further off than half an interval would fall out of order)");
+    double tag_before_s = res.imu.empty() ? 0.0 : res.imu.front().t_s - res.imu.front().dt_s;
+    for (ImuIncrement& s : res.imu) {
+      const double tag_s = s.t_s + half_width_s * (2.0 * rng.uniform() - 1.0), dt_s = tag_s - tag_before_s;
+      s.dtheta_b_rad *= dt_s / s.dt_s;
+      s.dvel_b_mps *= dt_s / s.dt_s;
+      s.t_s = tag_s;
+      s.dt_s = dt_s;
+      tag_before_s = tag_s;
+    }
   }
 
   // GNSS.

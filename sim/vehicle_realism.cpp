@@ -72,6 +72,12 @@ VehicleRealism resolve_vehicle_options(const VehicleOptions& o, uint64_t seed) {
     r.imu_latency_s = kRealismMaxImuLatency_s * rng.uniform();
   }
 
+  // A host that tags samples when it reads them (not drawn by the preset: a car's IMU is read on its own clock).
+  if (o.imu_stamp_jitter_s) {
+    require(in(*o.imu_stamp_jitter_s, 0.0, 0.01), "--imu-stamp-jitter", "a std in [0, 0.01] s", *o.imu_stamp_jitter_s);
+    r.imu_stamp_jitter_s = *o.imu_stamp_jitter_s;
+  }
+
   if (o.mounting_rpy_deg) {
     const Vec3& m = *o.mounting_rpy_deg;
     require(in(m.x(), -180.0, 180.0), "--mounting", "roll in [-180, 180] deg", m.x());
@@ -155,6 +161,7 @@ const EffectInfo* find_realism_quantity(const std::string& name) {
        "frequency at rest, frequency at and above the speed of the last value"},
       {"shocks", {1}, {"1/km"}, {1e-3}, {}, "road bumps per km travelled"},
       {"imu_latency", {1}, {"s"}, {1.0}, {}, "IMU time tag minus true sample time"},
+      {"imu_stamp_jitter", {1}, {"s"}, {1.0}, {}, "std of the IMU time tags about the sample times (uniform)"},
       {"vehicle_mounting",
        {3},
        {"deg", "deg", "deg"},

@@ -22,6 +22,7 @@ struct VehicleOptions {
   double engine_gyro_dps = 0.2;                      // engine harmonic amplitude, vehicle x and y (z: half)
   std::optional<double> shocks_per_km;               // road bumps per km travelled
   std::optional<double> imu_latency_s;               // IMU time tag = true sample time + latency
+  std::optional<double> imu_stamp_jitter_s;          // IMU time tags scattered about the sample times (std, uniform)
   std::optional<Vec3> mounting_rpy_deg;              // C_b_v = Rz(yaw) Ry(pitch) Rx(roll)
   std::optional<double> gnss_velocity_lag_s;         // GNSS velocity is the one at epoch - lag
   std::optional<double> gnss_velocity_noise_factor;  // simulated velocity noise / stated std
@@ -41,6 +42,7 @@ struct VehicleRealism {
   double engine_accel_mps2 = 0.0, engine_gyro_rad_s = 0.0;
   double shocks_per_km = 0.0;
   double imu_latency_s = 0.0;
+  double imu_stamp_jitter_s = 0.0;
   bool mounted = false;
   Vec3 mounting_rpy_rad = Vec3::Zero();
   Mat3 C_b_v = Mat3::Identity();

@@ -143,18 +143,8 @@ TEST(ImuStampJitter, GivenALiveSession_ThenTheTagsBeforeTheStartAreMeasuredAndMo
   req.gnss_rate_hz = 4.0;
   req.seed = 4;
   req.vehicle.vibration_factor = 10.0;
-  sim::SimResult sim = sim::simulate(req);
-  std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> off(-0.002, 0.002);
-  double tag_prev = sim.imu.front().t_s - sim.imu.front().dt_s;
-  for (ImuIncrement& s : sim.imu) {  // the sample's rate over the interval between its tag and the one before
-    const double tag = s.t_s + off(rng), dt = tag - tag_prev;
-    s.dtheta_b_rad *= dt / s.dt_s;
-    s.dvel_b_mps *= dt / s.dt_s;
-    s.t_s = tag;
-    s.dt_s = dt;
-    tag_prev = tag;
-  }
+  req.vehicle.imu_stamp_jitter_s = 0.004 / std::sqrt(12.0);  // within +-2 ms
+  const sim::SimResult sim = sim::simulate(req);
   KfGinsConfig cfg = sim.kfgins;
   cfg.init_pos.reset();
   cfg.init_vel_n_mps.reset();
@@ -171,6 +161,22 @@ TEST(ImuStampJitter, GivenALiveSession_ThenTheTagsBeforeTheStartAreMeasuredAndMo
   ASSERT_TRUE(session.navigating()) << session.initialisation();
   EXPECT_NEAR(filter.options().imu_stamp_jitter_s, 0.004 / std::sqrt(12.0), 0.15e-3) << session.initialisation();
   EXPECT_NE(session.initialisation().find("IMU tags"), std::string::npos) << session.initialisation();
+}
+
+// The simulator's host (`ldv sim --imu-stamp-jitter`) is found as simulated: 1 ms over 2 minutes of 200 Hz samples.
+TEST(ImuStampJitter, GivenTheSimulatorsJitteredTags_ThenTheJitterIsWhatWasSimulated) {
+  sim::SimRequest req;
+  req.grade = "3dm-gx2-typical";
+  req.duration_s = 120.0;
+  req.gnss_rate_hz = 5.0;
+  req.seed = 5;
+  req.vehicle.imu_stamp_jitter_s = 0.001;
+  const sim::SimResult sim = sim::simulate(req);
+  const ImuStampJitter j = measure_imu_stamp_jitter(sim.imu);
+  ASSERT_TRUE(j.noticeable());
+  EXPECT_NEAR(j.sigma_s, 0.001, 3.0 * j.sigma_sigma_s + 2e-5);
+  EXPECT_NEAR(j.sample_interval_s, 0.005, 1e-6);
+  EXPECT_NEAR(sim.injected_effects.at("imu_stamp_jitter")[0], 0.001, 1e-12);
 }
 
 }  // namespace

@@ -22,6 +22,7 @@ struct SimOptions {
   std::string out_dir;
   std::vector<double> lever_arm;
   // Vehicle options (sim/vehicle_realism.hpp): given or not decides whether the realism preset draws them.
+  double imu_stamp_jitter = 0;
   double vibration = 0, shocks = 0, imu_latency = 0, gnss_velocity_lag = 0, gnss_velocity_noise = 0, gnss_outliers = 0;
   std::vector<double> mounting, engine_vibration, odo_lever_arm;
   bool no_noise = false;
@@ -59,6 +60,7 @@ void set_vehicle_options(SimOptions& o, const CLI::App& cmd) {
   if (given("--vibration")) v.vibration_factor = o.vibration;
   if (given("--shocks")) v.shocks_per_km = o.shocks;
   if (given("--imu-latency")) v.imu_latency_s = o.imu_latency;
+  if (given("--imu-stamp-jitter")) v.imu_stamp_jitter_s = o.imu_stamp_jitter;
   if (given("--gnss-velocity-lag")) v.gnss_velocity_lag_s = o.gnss_velocity_lag;
   if (given("--gnss-velocity-noise")) v.gnss_velocity_noise_factor = o.gnss_velocity_noise;
   if (given("--gnss-outliers")) v.gnss_outlier_rate = o.gnss_outliers;
@@ -208,6 +210,10 @@ void add_sim_command(CLI::App& app) {
       ->check(ldv::cli::checked_where_used());
   cmd->add_option("--shocks", opts->shocks, "road bumps per km travelled")->check(ldv::cli::checked_where_used());
   cmd->add_option("--imu-latency", opts->imu_latency, "IMU time tags late by S [s] (tag = true time + S)")
+      ->check(ldv::cli::checked_where_used());
+  cmd->add_option("--imu-stamp-jitter", opts->imu_stamp_jitter,
+                  "IMU time tags scattered about the sample times by a std of S [s] (uniform; a host that tags on "
+                  "reading), each increment the sample's rate over its tag interval")
       ->check(ldv::cli::checked_where_used());
   cmd->add_option("--mounting", opts->mounting,
                   "IMU body in the vehicle: roll,pitch,yaw [deg], C_b_v = Rz(yaw) Ry(pitch) Rx(roll)")
