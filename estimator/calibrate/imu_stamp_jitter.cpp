@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "estimator/calibrate/gnss_track.hpp"
+
 namespace ldv::est {
 namespace {
 
@@ -17,11 +19,6 @@ bool same_sample(const Eigen::Matrix<double, 6, 1>& a, const Eigen::Matrix<doubl
   for (int i = 0; i < 6; ++i)
     if (std::abs(a(i) - b(i)) > 1e-9 * std::max(std::abs(a(i)), std::abs(b(i))) + 1e-15) return false;
   return true;
-}
-
-double median_of(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
 }
 
 // The residual std of tags t about the line a + T k, k the sample's count in the window. A window with a lost
@@ -83,12 +80,12 @@ ImuStampJitter measure_imu_stamp_jitter(const std::vector<double>& tags, long ro
   }
   if (sigmas.size() < 3) return out;
   out.windows = static_cast<int>(sigmas.size());
-  out.sigma_s = median_of(sigmas);
+  out.sigma_s = median_in_place(sigmas);
   std::vector<double> deviation(sigmas.size());
   for (size_t j = 0; j < sigmas.size(); ++j) deviation[j] = std::abs(sigmas[j] - out.sigma_s);
   // The median's sigma: sqrt(pi/2) times the mean's, the mean's the robust spread over sqrt(windows).
-  out.sigma_sigma_s = 1.2533 * 1.4826 * median_of(deviation) / std::sqrt(static_cast<double>(sigmas.size()));
-  out.sample_interval_s = median_of(intervals);
+  out.sigma_sigma_s = 1.2533 * 1.4826 * median_in_place(deviation) / std::sqrt(static_cast<double>(sigmas.size()));
+  out.sample_interval_s = median_in_place(intervals);
   out.found = true;
   return out;
 }

@@ -97,11 +97,11 @@ class NavFilter {
   // and the estimator behind both factors (its whiteness check).
   double gnss_noise_scale(int gnss_class = 0) const { return c_.noise_adaptation.gnss_scale(gnss_class); }
   const NoiseAdaptation& noise_adaptation() const { return c_.noise_adaptation; }
+  // The IMU tags' scatter [s] measured from the data (FilterOptions::imu_stamp_jitter_s), before the first sample.
+  void set_imu_stamp_jitter(double sigma_s) { opt_.imu_stamp_jitter_s = sigma_s; }
   // A white-noise density configured as 0 (a datasheet that prints none) takes the one given, axis by axis,
   // e.g. what a standstill in the data showed: the floor below is a factor and cannot raise a 0. Before
   // initialize (the static detector reads the densities there). Returns whether anything was filled.
-  // The IMU tags' scatter [s] measured from the data (FilterOptions::imu_stamp_jitter_s), before the first sample.
-  void set_imu_stamp_jitter(double sigma_s) { opt_.imu_stamp_jitter_s = sigma_s; }
   bool fill_unset_white_noise(const Vec3& arw_rad_per_sqrt_s, const Vec3& vrw_mps_per_sqrt_s);
   // The floor: the noise as installed, e.g. what a standstill in the data showed (installed_imu_noise.hpp), set
   // after initialize; without it the configuration. The adaptation never goes below it.

@@ -160,6 +160,22 @@ void add_self_calibration_findings(Diagnosis& d) {
     c.note = "turn-on bias measured over the start's static window and taken out of every sample";
     d.self_calibration.push_back(c);
   }
+  // The body heading of an unknown mounting, chosen among ldv.align_hypotheses at the start (nav_session.cpp).
+  if (const auto& h = d.before.summary.body_heading) {
+    SelfCalibration c;
+    c.name = "body_heading";
+    c.estimate_si = Eigen::VectorXd::Constant(1, h->from_course_rad);
+    c.sigma_si = Eigen::VectorXd::Constant(1, 0.5 * h->spacing_rad);  // the alignment's own heading sigma then
+    c.unit = "deg";
+    c.print_scale = kRadToDeg;
+    c.applied = true;
+    char b[200];
+    std::snprintf(
+        b, sizeof b, "the IMU's x axis from the GNSS course at the start, best of %d headings %s", h->tried,
+        h->by_accelerations ? "by the accelerations against the track" : "by a filter's innovations per heading");
+    c.note = b;
+    d.self_calibration.push_back(c);
+  }
 }
 
 }  // namespace

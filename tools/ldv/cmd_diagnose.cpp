@@ -177,22 +177,6 @@ void run_diagnose(const DiagnoseArgs& a) {
     c.note = loaded.gnss_velocity_note;
     d.self_calibration.push_back(c);
   }
-  // The body heading of an unknown mounting, chosen among ldv.align_hypotheses at the start (nav_session.cpp).
-  if (const auto& h = d.before.summary.body_heading) {
-    diag::SelfCalibration c;
-    c.name = "body_heading";
-    c.estimate_si = Eigen::VectorXd::Constant(1, h->from_course_rad);
-    c.sigma_si = Eigen::VectorXd::Constant(1, 0.5 * h->spacing_rad);  // the alignment's own heading sigma then
-    c.unit = "deg";
-    c.print_scale = 180.0 / M_PI;
-    c.applied = true;
-    char b[200];
-    std::snprintf(
-        b, sizeof b, "the IMU's x axis from the GNSS course at the start, best of %d headings %s", h->tried,
-        h->by_accelerations ? "by the accelerations against the track" : "by a filter's innovations per heading");
-    c.note = b;
-    d.self_calibration.push_back(c);
-  }
   // The IMU tags' jitter, measured from the rows (a tagged CSV) or the increments, and modelled in every run.
   const est::ImuStampJitter& jitter =
       loaded.imu_stamp_jitter.found ? loaded.imu_stamp_jitter : d.before.summary.imu_stamp_jitter;
