@@ -19,6 +19,7 @@
 #include "estimator/run/nav_session.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "sim/simulator.hpp"
+#include "tests/estimator/walk_datasheet_config.hpp"
 #include "toolbox/assess/nav_inputs.hpp"
 
 namespace ldv::est {
@@ -99,15 +100,7 @@ TEST(ImuStampJitter, GivenTooFewSamples_ThenNothingIsMeasured) {
 // the split noise adaptation no longer lets call every misfit IMU noise, rejects fewer than half the fixes it
 // rejected without (36 -> 15: what is left is the lever arm, lag and gyro misalignment ldv diagnose names).
 TEST(ImuStampJitter, GivenTheRealWalksHostTags_ThenTheirJitterIsMeasuredAndModelledAndFewerFixesAreRejected) {
-  const std::string walk = std::string(LDV_SHARED_DATA_DIR) + "/drives/walk_0827/";
-  const std::filesystem::path config =
-      std::filesystem::temp_directory_path() / ("ldv_walk_datasheet_" + std::to_string(::getpid()) + ".yaml");
-  std::ofstream(config) << "imupath: " << walk << "imu_1730.csv\ngnsspath: " << walk << "gnss_1730_sf.pos\n"
-                        << "outputpath: .\nimudatalen: 7\nimudatarate: 150\nstarttime: 0\nendtime: -1\n"
-                        << "imunoise:\n  arw: [0.24, 0.24, 0.24]\n  vrw: [0.06, 0.06, 0.06]\n"
-                        << "  gbstd: [10, 10, 10]\n  abstd: [200, 200, 200]\n  gsstd: [1000, 1000, 1000]\n"
-                        << "  asstd: [1000, 1000, 1000]\n  corrtime: 1\nantlever: [0, 0, 0]\n"
-                        << "ldv:\n  pos_height_offset_m: 21.387\n";
+  const std::filesystem::path config = test::write_walk_datasheet_config("jitter");
   assess::NavInputArgs a;
   a.config = config.string();
   const assess::NavInputs in = assess::load_nav_inputs(a);

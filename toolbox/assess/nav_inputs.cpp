@@ -202,8 +202,11 @@ constexpr double kLagNoiseGain = 0.7;
 constexpr double kLagLikelihoodGain = 10.83;
 
 // -2 ln L of the GNSS positions as a function of a shift of the IMU stamps: sum over the fixes of NIS + ln det S
-// (positions only, the same fixes in every pass, an outlier counted as at the filter's gate), each pass with the
-// IMU shifted exactly and the IMU noise held at what a pass at the current stamps adapted to.
+// (positions only, an outlier counted as at the filter's gate), each pass with the IMU shifted exactly and the IMU
+// noise held at what a pass at the current stamps adapted to. The fixes compared are the first pass's: a fix a
+// later pass did not update with (it lost the track and waited to align again: the real walk at the turns' 406
+// ms) counts as an outlier at the gate with the first pass's ln det S, so a pass that fails is worse, not
+// incomparable.
 class ShiftLikelihood {
  public:
   explicit ShiftLikelihood(const NavInputs& in) : in_(in), o_(in.options) {
@@ -211,7 +214,7 @@ class ShiftLikelihood {
     gate_ = math::chi_square_quantile(o_.gate_probability, 3);
     est::ImuNoiseScale q;
     if (!pass(0.0, &q)) return;  // the run itself will say what is wrong
-    t0_ = terms_.front().first + 5.0, t1_ = terms_.back().first - 1.0;
+    t0_ = terms_.front().t_s + 5.0, t1_ = terms_.back().t_s - 1.0;
     have_zero_ = !o_.adapt_imu_noise;  // the pass at 0 is then the one the scan would make
     if (o_.adapt_imu_noise) {
       o_.arw_rad_per_sqrt_s *= std::sqrt(q.gyro);
@@ -222,7 +225,7 @@ class ShiftLikelihood {
   }
   bool ok() const { return ok_; }
   const est::FilterOptions& options() const { return o_; }
-  // NaN when the pass failed or saw other fixes than the first.
+  // NaN when the pass failed.
   double cost(double lag_s) {
     if (!ok_) return NAN;
     const bool reuse = have_zero_ && lag_s == 0.0 && !zero_used_;
@@ -231,7 +234,7 @@ class ShiftLikelihood {
     return summed_terms();
   }
   // -2 ln L at the stamps as they are with an effect the model does not hold added (estimated by the filter on
-  // the way), the same fixes: what that effect explains instead of a lag. NaN as cost().
+  // the way), over the same fixes: what that effect explains instead of a lag. NaN as cost().
   double cost_with(const std::string& effect) {
     if (!ok_) return NAN;
     const est::FilterOptions plain = o_;
@@ -243,17 +246,18 @@ class ShiftLikelihood {
   }
 
  private:
-  // The last pass's -2 ln L over the compared span; NaN when it saw other fixes than the first pass.
+  // The last pass's -2 ln L over the first pass's fixes in the compared span.
   double summed_terms() {
+    if (reference_.empty())
+      for (const Term& x : terms_)
+        if (x.t_s >= t0_ && x.t_s <= t1_) reference_.push_back(x);
     double sum = 0.0;
-    long n = 0;
-    for (const auto& [t, j] : terms_)
-      if (t >= t0_ && t <= t1_) {
-        sum += j;
-        ++n;
-      }
-    if (fixes_ >= 0 && n != fixes_) return NAN;
-    fixes_ = n;
+    auto it = terms_.begin();
+    for (const Term& ref : reference_) {
+      while (it != terms_.end() && it->t_s < ref.t_s - kSameFix_s) ++it;
+      const bool used = it != terms_.end() && std::abs(it->t_s - ref.t_s) <= kSameFix_s;
+      sum += used ? it->capped_nis + it->log_det_s : gate_ + ref.log_det_s;
+    }
     return sum;
   }
   bool pass(double lag_s, est::ImuNoiseScale* noise) {
@@ -264,7 +268,7 @@ class ShiftLikelihood {
       const Eigen::LLT<Eigen::MatrixXd> llt(r.S);
       if (llt.info() != Eigen::Success) return;
       const Eigen::MatrixXd L = llt.matrixL();
-      terms_.push_back({r.t_s, std::min(r.nis, gate_) + 2.0 * L.diagonal().array().log().sum()});
+      terms_.push_back({r.t_s, std::min(r.nis, gate_), 2.0 * L.diagonal().array().log().sum()});
     };
     try {
       est::NavFilter filter(o_);
@@ -279,8 +283,11 @@ class ShiftLikelihood {
   const NavInputs& in_;
   est::FilterOptions o_;
   double gate_ = 0.0, t0_ = 0.0, t1_ = 0.0;
-  std::vector<std::pair<double, double>> terms_;
-  long fixes_ = -1;
+  struct Term {
+    double t_s, capped_nis, log_det_s;
+  };
+  static constexpr double kSameFix_s = 1e-4;  // a fix's time in every pass (the GNSS stamps are not shifted)
+  std::vector<Term> terms_, reference_;
   bool ok_ = false, have_zero_ = false, zero_used_ = false;
 };
 
@@ -420,6 +427,7 @@ void estimate_and_remove_imu_latency(const NavInputArgs& a, bool shift_given, Na
       in.imu_latency_applied = true;
     }
     in.imu_latency_lever_explains = lever_explains;
+    in.imu_latency_likelihood_gain = fall;
     char why[160];
     if (e.sigma_s >= est::ImuLatencyEstimate::kMaxSigma_s)
       std::snprintf(why, sizeof why, "known by the turns to %.0f ms only", 1e3 * e.sigma_s);
@@ -429,8 +437,13 @@ void estimate_and_remove_imu_latency(const NavInputArgs& a, bool shift_given, Na
                     1e3 * e.lever_arm_equivalent_lag_s());
     else
       std::snprintf(why, sizeof why, "only %.1f of the turns' sigmas", std::abs(e.lag_s) / e.sigma_s);
-    char likelihood_said[96] = "the fixes' likelihood could not be compared (a pass failed or saw other fixes)";
-    if (std::isfinite(fall))
+    // A lag the fixes refute (the real walk: the turns' 406 ms raises -2 ln L by 5800, the pass loses the track).
+    const bool refuted = fall < -kLagLikelihoodGain;
+    char likelihood_said[96] = "the fixes' likelihood could not be compared (a pass failed)";
+    if (refuted)
+      std::snprintf(likelihood_said, sizeof likelihood_said, "-2 ln L of the fixes rises by %.1f with it: not a lag",
+                    -fall);
+    else if (std::isfinite(fall))
       std::snprintf(likelihood_said, sizeof likelihood_said, "-2 ln L of the fixes falls by %.1f with it", fall);
     char lever_said[200] = "";
     if (std::isfinite(cost_lever))
@@ -512,12 +525,11 @@ NavInputs load_nav_inputs(const NavInputArgs& a) {
     in.file_counts.push_back({"IMU", imu_path, rep.samples, rep.dropped});
     in.imu_gaps = rep.long_gaps;
     // The tags' jitter from the rows themselves: the trapezoid's increments no longer show which rows repeated.
+    // Measured here or not at all: the run would read the reads' scatter in the increments, not the samples'.
     if (in.options.imu_stamp_jitter_from_tags) {
       in.imu_stamp_jitter = est::measure_imu_stamp_jitter(rep.distinct_sample_tags_s, rep.samples, rep.repeated_rows);
-      if (in.imu_stamp_jitter.found) {
-        in.options.imu_stamp_jitter_s = in.imu_stamp_jitter.sigma_s;
-        in.options.imu_stamp_jitter_from_tags = false;
-      }
+      if (in.imu_stamp_jitter.found) in.options.imu_stamp_jitter_s = in.imu_stamp_jitter.sigma_s;
+      in.options.imu_stamp_jitter_from_tags = false;
     }
     calibrate();  // in the device axes, as `ldv calib static` saw them
     for (ImuIncrement& s : in.imu) {

@@ -17,6 +17,7 @@
 // accel_bias, gyro_scale and accel_scale blocks, unless the configuration gives that prior (initbgstd,
 // initbastd, initsgstd, initsastd): after the calibration, what is left of those errors is its uncertainty.
 // NavInputs::imu_note says what was applied.
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -95,6 +96,9 @@ struct NavInputs {
   bool imu_latency_applied = false;
   // Not taken out because a forward lever arm explained the fixes as well or better (the pair is the model's).
   bool imu_latency_lever_explains = false;
+  // Where the filter judged the turns' lag over the whole file: -2 ln L of the GNSS positions without it minus with
+  // it (positive: the lag fits better), NaN where it was not judged.
+  double imu_latency_likelihood_gain = NAN;
   // The latency after a filter pass with the time_offset state refined it (NavInputArgs::refine_latency_in_filter).
   struct RefinedLatency {
     bool done = false;
