@@ -768,10 +768,13 @@ void NavFilter::apply_measurement(const Measurement& given) {
   // A fix beyond the gate that repeats the one before it is a state the fixes have left (a step, a misstated
   // initial attitude drifting away: the re-synchronisation's to take up), not a sample of their noise.
   const bool repeats_a_rejection = beyond_gate && run.count > 0 && (agrees_with(run.last_y) || agrees_with(run.held_y));
-  if (split && !force && !repeats_a_rejection)
-    adapt_noise(rec, m.R, m.gnss_class);
-  else if (opt_.adapt_imu_noise && m.sensor == sensors::kGnssPosition && !force)
+  // (Split, such a fix moves neither factor; it once fell through to the one-factor rule, which took the IMU noise
+  // to 6x for a fix interval on a MEMS drive whose fixes stated a fifth of their std.)
+  if (split) {
+    if (!force && !repeats_a_rejection) adapt_noise(rec, m.R, m.gnss_class);
+  } else if (opt_.adapt_imu_noise && m.sensor == sensors::kGnssPosition && !force) {
     adapt_imu_noise(rec);
+  }
   if (ok && force) {
     c_.status |= kStatusGateResync;
     ++faults_.gate_resyncs;
