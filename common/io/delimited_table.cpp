@@ -161,7 +161,7 @@ TableLayout sniff_table_layout(const std::string& path) {
     size_t best = 0;
     long most = 0;
     for (const auto& [count, n] : lines_with)
-      if (n > most) best = count, most = n;
+      if (n >= most) best = count, most = n;  // a tie: the more fields (a ragged last line)
     *numbers = 0;
     for (size_t i = tail_begin; i < sample.size(); ++i) {
       if (is_comment(sample[i].text)) continue;
@@ -201,7 +201,8 @@ TableLayout sniff_table_layout(const std::string& path) {
     throw InputError(path, sample.front().line_no,
                      "no rows of numbers found in the first " + std::to_string(sample.size()) + " lines");
 
-  // The rows: the first line of that count whose numbers sit where the next such line has them.
+  // The rows: the first line of that count whose numbers sit where the next line of that count has them (a ragged
+  // line between is the reader's to report).
   std::vector<std::vector<bool>> patterns(sample.size());
   std::vector<bool> counted(sample.size(), false);
   for (size_t i = 0; i < sample.size(); ++i) {
@@ -213,8 +214,8 @@ TableLayout sniff_table_layout(const std::string& path) {
   for (size_t i = 0; i < sample.size() && first == sample.size(); ++i) {
     if (!counted[i] || std::find(patterns[i].begin(), patterns[i].end(), true) == patterns[i].end()) continue;
     size_t next = i + 1;
-    while (next < sample.size() && is_comment(sample[next].text)) ++next;
-    if (next >= sample.size() || (counted[next] && patterns[next] == patterns[i])) first = i;
+    while (next < sample.size() && !counted[next]) ++next;
+    if (next >= sample.size() || patterns[next] == patterns[i]) first = i;
   }
   if (first == sample.size())
     throw InputError(path, sample.front().line_no,

@@ -203,3 +203,36 @@ TEST(AllanInput, GivenJitteredStampsOrHoles_ThenTheIntervalIsTheMeanAndHolesAreN
   const std::string one = write("one_hole.txt", [](int i) { return 100.0 + 0.01 * (i < 1000 ? i : i + 1); });
   EXPECT_NEAR(read_allan_input(one, opt).front().tau0_s, 0.01, 1e-9);
 }
+
+namespace ldv::allan {
+namespace {
+// Issue 49: `ldv allan static_7min.csv --columns gx,gy,gz` failed ("no column 'gx' (the header names: Fs, 100)") on
+// the real MPU-6050 log that `ldv calib static` reads: four preamble lines come before its header. The layout is now
+// read from the file (common/io/delimited_table). Its first row after the header, line 6, is gx -429, gy 140, gz -53
+// (counts), and the mean of gz is the log's own.
+TEST(AllanInput, GivenTheRealMpu6050LogWithAPreambleBeforeItsHeader_ThenTheNamedColumnsAreRead) {
+  const std::string path = std::string(LDV_SHARED_DATA_DIR) + "/calib/mpu6050/static_7min.csv";
+  InputOptions csv;
+  csv.format = InputFormat::kCsv;
+  csv.rate_hz = 100;
+  csv.columns = {"gx", "gy", "gz"};
+  const std::vector<PhaseSeries> s = read_allan_input(path, csv);
+  ASSERT_EQ(s.size(), 3u);
+  EXPECT_EQ(s[0].name, "gx");
+  EXPECT_EQ(s[2].name, "gz");
+  // The test's own reading of the file: every line after the header, the 6th field.
+  std::ifstream in(path);
+  std::string line;
+  long rows = 0;
+  double sum_gz = 0.0;
+  for (int k = 0; std::getline(in, line); ++k) {
+    if (k < 5) continue;
+    sum_gz += std::stod(line.substr(line.rfind(',') + 1));
+    ++rows;
+  }
+  ASSERT_GT(rows, 40000);
+  EXPECT_EQ(static_cast<long>(s[2].x.size()), rows + 1);  // phase: one more than the rates
+  EXPECT_NEAR(s[2].mean_rate, sum_gz / rows, 1e-9 * std::abs(sum_gz / rows));
+}
+}  // namespace
+}  // namespace ldv::allan

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "common/io/delimited_table.hpp"
 #include "common/io/input_error.hpp"
 #include "common/io/text_table.hpp"
 #include "common/logging.hpp"
@@ -173,53 +174,51 @@ T per_column(const std::vector<T>& v, size_t i, T fallback, const char* what, si
 }
 
 std::vector<PhaseSeries> read_csv(const std::string& path, const InputOptions& opt, const ProgressFn& progress) {
-  std::vector<std::string> header;
+  // The layout from the file (a logger's preamble before the header, another separator: common/io/delimited_table).
+  const TableLayout layout = sniff_table_layout(path);
+  const auto find_column = [&](const std::string& key, const char* option) {
+    return table_column(layout, key, path, option);
+  };
+  const auto column_name = [&](int c) {
+    return layout.header.empty() ? "column " + std::to_string(c + 1) : layout.header[c];
+  };
+  const int time_col = opt.time_column.empty() ? -1 : find_column(opt.time_column, "--time-column");
   std::vector<int> cols;  // 0-based
-  int time_col = -1;
+  if (opt.columns.empty()) {
+    for (int i = 0; i < layout.columns; ++i)
+      if (i != time_col) cols.push_back(i);
+  } else {
+    for (const auto& c : opt.columns) cols.push_back(find_column(c, "--columns"));
+  }
   std::vector<InputUnit> units;
   std::vector<double> scale;
-  std::vector<std::vector<double>> data;
+  for (size_t i = 0; i < cols.size(); ++i) {
+    units.push_back(parse_input_unit(per_column<std::string>(opt.units, i, "1", "--units", cols.size())));
+    const double cpu = per_column<double>(opt.counts_per_unit, i, 1.0, "--counts-per-unit", cols.size());
+    if (!(cpu != 0.0)) throw std::invalid_argument("--counts-per-unit must not be zero");
+    scale.push_back(units.back().to_si / cpu);
+  }
+  std::vector<std::vector<double>> data(cols.size());
   std::vector<double> dts;
   std::vector<long> dt_lines;
   double t_prev = 0.0;
   long rows = 0;
-  std::vector<std::string_view> fields;
-  auto find_column = [&](const std::string& key) -> int {
-    for (size_t i = 0; i < header.size(); ++i) if (header[i] == key) return static_cast<int>(i);
-    if (!key.empty() && std::all_of(key.begin(), key.end(), ::isdigit)) {
-      const int idx = std::stoi(key) - 1;
-      if (idx >= 0 && idx < static_cast<int>(header.size())) return idx;
-    }
-    std::string known;
-    for (const auto& h : header) known += (known.empty() ? "" : ", ") + h;
-    throw InputError(path, 1, "no column '" + key + "' (the header names: " + known + ")");
+  const auto number = [&](std::string_view field, long line, int col) {
+    double v = 0.0;
+    if (!parse_table_number(field, layout, v))
+      throw InputError(path, line,
+                       "column " + std::to_string(col + 1) + " (" + column_name(col) +
+                           "): expected a finite number, found '" + std::string(field.substr(0, 40)) + "'");
+    return v;
   };
-  for_each_line(path, [&](long line, std::string_view text) {
-    split_fields(text, fields);
-    if (is_comment(fields)) return;
-    if (header.empty()) {
-      for (auto f : fields) header.emplace_back(f);
-      if (!opt.time_column.empty()) time_col = find_column(opt.time_column);
-      if (opt.columns.empty()) {
-        for (int i = 0; i < static_cast<int>(header.size()); ++i) if (i != time_col) cols.push_back(i);
-      } else {
-        for (const auto& c : opt.columns) cols.push_back(find_column(c));
-      }
-      for (size_t i = 0; i < cols.size(); ++i) {
-        units.push_back(parse_input_unit(per_column<std::string>(opt.units, i, "1", "--units", cols.size())));
-        const double cpu = per_column<double>(opt.counts_per_unit, i, 1.0, "--counts-per-unit", cols.size());
-        if (!(cpu != 0.0)) throw std::invalid_argument("--counts-per-unit must not be zero");
-        scale.push_back(units.back().to_si / cpu);
-      }
-      data.resize(cols.size());
-      return;
-    }
-    if (fields.size() != header.size()) {
-      throw InputError(path, line, "expected " + std::to_string(header.size()) + " columns as in the header, found " +
-                                       std::to_string(fields.size()));
+  for_each_table_row(path, layout, [&](long line, const std::vector<std::string_view>& fields) {
+    if (static_cast<int>(fields.size()) != layout.columns) {
+      throw InputError(path, line,
+                       "expected " + std::to_string(layout.columns) + " columns as in the rows before, found " +
+                           std::to_string(fields.size()));
     }
     if (time_col >= 0) {
-      const double t = parse_double(fields[time_col], path, line, time_col + 1);
+      const double t = number(fields[time_col], line, time_col);
       if (rows > 0) {
         if (!(t > t_prev))
           throw InputError(
@@ -230,18 +229,17 @@ std::vector<PhaseSeries> read_csv(const std::string& path, const InputOptions& o
       }
       t_prev = t;
     }
-    for (size_t i = 0; i < cols.size(); ++i) data[i].push_back(parse_double(fields[cols[i]], path, line, cols[i] + 1) * scale[i]);
+    for (size_t i = 0; i < cols.size(); ++i) data[i].push_back(number(fields[cols[i]], line, cols[i]) * scale[i]);
     if (++rows % kProgressRows == 0 && progress) progress("read " + std::to_string(rows) + " rows");
   });
-  if (header.empty()) throw InputError(path, 0, "empty file: expected a header line naming the columns");
   double tau0 = explicit_tau0(opt);
   if (tau0 == 0.0 && time_col < 0)
     throw InputError(path, 0, "the sample interval is unknown: give --rate, --tau0 or --time-column");
   if (time_col >= 0) tau0 = sample_interval(dts, dt_lines, path, tau0);
   std::vector<PhaseSeries> out;
   for (size_t i = 0; i < cols.size(); ++i) {
-    check_channel(data[i], path, header[cols[i]]);
-    out.push_back(phase_from_rates(std::move(data[i]), tau0, header[cols[i]], units[i].si_name));
+    check_channel(data[i], path, column_name(cols[i]));
+    out.push_back(phase_from_rates(std::move(data[i]), tau0, column_name(cols[i]), units[i].si_name));
   }
   return out;
 }
