@@ -241,6 +241,27 @@ std::vector<double> ConfigSection::numbers(const std::string& key, const std::ve
   return out;
 }
 
+std::vector<double> ConfigSection::number_list(const std::string& key, Range range) {
+  const YAML::Node v = value(key);
+  if (!v.IsDefined() || v.IsNull()) return {};
+  if (!v.IsSequence() || v.size() == 0) fail(key, "expected a list of numbers " + range.describe());
+  return numbers(key, {}, v.size(), range);
+}
+
+std::vector<std::string> ConfigSection::names(const std::string& key, const std::vector<std::string>& fallback,
+                                              std::size_t count) {
+  const YAML::Node v = value(key);
+  if (!v.IsDefined() || v.IsNull()) return fallback;
+  const std::string expected = "expected a list of " + std::to_string(count) + " names";
+  if (!v.IsSequence() || v.size() != count) fail(key, expected);
+  std::vector<std::string> out;
+  for (const YAML::Node& e : v) {
+    if (!e.IsScalar() || e.Scalar().empty()) fail(key, expected + ", found a list, a map or nothing in one place");
+    out.push_back(e.Scalar());
+  }
+  return out;
+}
+
 ConfigSection ConfigSection::section(const std::string& key) {
   const YAML::Node v = value(key);
   auto child = std::make_shared<State>();

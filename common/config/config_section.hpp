@@ -64,6 +64,10 @@ class ConfigSection {
   // Exactly `count` numbers, each in `range`.
   std::vector<double> numbers(const std::string& key, const std::vector<double>& fallback, std::size_t count,
                               Range range = Range::any());
+  // A list of one or more numbers, each in `range`; absent: empty.
+  std::vector<double> number_list(const std::string& key, Range range = Range::any());
+  // Exactly `count` names (a list of text; a number is its text: a 1-based column index); absent: fallback.
+  std::vector<std::string> names(const std::string& key, const std::vector<std::string>& fallback, std::size_t count);
   // A nested map (absent or null: an empty section). Its keys are checked by refuse_unknown() too.
   ConfigSection section(const std::string& key);
 

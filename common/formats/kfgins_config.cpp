@@ -142,6 +142,8 @@ const std::vector<std::string> kLdvKeys = {
     // inputs
     "week", "pos_height_offset_m", "float_std_min_m", "imu_time_shift_s", "imu_latency", "calibration",
     "odopath",  // odometer text file (common/formats/odometer_text.hpp), written by `ldv sim --odometer`
+    // a user's own tables instead of imupath / gnsspath (input/tables/imu_table.hpp, gnss_table.hpp)
+    "imu_table", "gnss_table",
     // written by `ldv sim` (its truth and settings, for the record)
     "simulator", "declared_effects_si", "gnss_latency_s"};
 
@@ -264,8 +266,10 @@ KfGinsConfig load_kfgins_config(const std::string& path) {
   const Reader r{path, root};
   KfGinsConfig c;
   c.config_path = path;
-  c.imu_path = resolve_data_path(r.text("imupath"), path);
-  c.gnss_path = resolve_data_path(r.text("gnsspath"), path);
+  // A table described under ldv: (input/tables/) stands for the file; its reader names it.
+  const auto table = [&](const char* key) { return root["ldv"] && root["ldv"].IsMap() && root["ldv"][key]; };
+  if (!(table("imu_table") && !r.has("imupath"))) c.imu_path = resolve_data_path(r.text("imupath"), path);
+  if (!(table("gnss_table") && !r.has("gnsspath"))) c.gnss_path = resolve_data_path(r.text("gnsspath"), path);
   c.output_path = r.has("outputpath") ? resolve_data_path(r.text("outputpath"), path) : ".";
   if (r.has("imudatalen")) c.imu_data_columns = static_cast<int>(r.number("imudatalen", 7, 64, "columns"));
   if (r.has("imudatarate")) c.imu_rate_hz = r.number("imudatarate", 1e-3, 1e5, "Hz");

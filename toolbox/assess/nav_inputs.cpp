@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <optional>
 
+#include "common/config/config_section.hpp"
 #include "common/formats/imu_calibration.hpp"
 #include "common/formats/kfgins_files.hpp"
 #include "common/formats/odometer_text.hpp"
@@ -15,25 +16,20 @@
 #include "common/formats/tagged_imu_csv.hpp"
 #include "common/io/input_error.hpp"
 #include "common/math/chi_square.hpp"
+#include "common/math/device_axes.hpp"
 #include "estimator/calibrate/gnss_velocity_check.hpp"
 #include "estimator/filter/nav_filter.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "estimator/update/odometer.hpp"
+#include "input/tables/gnss_table.hpp"
+#include "input/tables/imu_table.hpp"
 
 namespace ldv::assess {
 namespace {
 
-Vec3 remap(const Vec3& v, const std::vector<int>& axes) {
-  Vec3 out;
-  for (int i = 0; i < 3; ++i) out(i) = (axes[i] > 0 ? 1.0 : -1.0) * v(std::abs(axes[i]) - 1);
-  return out;
-}
-
 void check_axes(const std::vector<int>& axes) {
-  int seen = 0;
-  for (int a : axes)
-    if (std::abs(a) >= 1 && std::abs(a) <= 3) seen |= 1 << std::abs(a);
-  if (axes.size() != 3 || seen != 0b1110) throw InputError("--csv-axes", 0, "expected a permutation of 1 2 3 with signs, e.g. 1 -2 -3");
+  if (!is_device_axes(axes))
+    throw InputError("--csv-axes", 0, "expected a permutation of 1 2 3 with signs, e.g. 1 -2 -3");
 }
 
 bool ends_with(const std::string& s, const char* suffix) {
@@ -508,6 +504,21 @@ NavInputs load_nav_inputs(const NavInputArgs& a) {
   if (!a.gnss.empty()) in.config.gnss_path = a.gnss;
   if (!a.rtklib_pos.empty()) in.config.gnss_path = a.rtklib_pos;
 
+  // A user's own tables (ldv.imu_table / ldv.gnss_table: input/tables/) unless the command line names a file.
+  const auto table_section = [&](const char* key) {
+    return config::ConfigSection(in.config.ldv[key], in.config.config_path, std::string("ldv.") + key + ".");
+  };
+  std::optional<input::ImuTable> imu_table;
+  std::optional<input::GnssTable> gnss_table;
+  if (a.imu.empty() && a.imu_csv.empty() && has_ldv_key(in.config, "imu_table")) {
+    imu_table = input::ImuTable::from(table_section("imu_table"), in.config.config_path);
+    in.config.imu_path = imu_table->path;
+  }
+  if (a.gnss.empty() && a.rtklib_pos.empty() && has_ldv_key(in.config, "gnss_table")) {
+    gnss_table = input::GnssTable::from(table_section("gnss_table"), in.config.config_path);
+    in.config.gnss_path = gnss_table->path;
+  }
+
   const std::string& imu_path = in.config.imu_path;
   if (imu_path.empty()) throw InputError("ldv", 0, "give --kfgins-config FILE, or --imu FILE (or --imu-csv FILE)");
   // Loaded before the IMU file so a bad calibration is reported before a long read.
@@ -518,7 +529,15 @@ NavInputs load_nav_inputs(const NavInputArgs& a) {
     if (cal)
       for (ImuIncrement& s : in.imu) s = calib::apply_calibration(*cal, s);
   };
-  if (!a.imu_csv.empty() || ends_with(imu_path, ".csv")) {
+  if (imu_table) {
+    input::ImuTableReport rep;
+    in.imu = input::read_imu_table(*imu_table, &rep);
+    in.file_counts.push_back({"IMU", imu_path, static_cast<long>(in.imu.size()), rep.dropped});
+    in.imu_gaps = rep.long_gaps;
+    calibrate();  // the table's rows are in front-right-down already
+    in.imu_note = "ldv.imu_table: " + rep.layout.describe() + "; time " + imu_table->time.describe() + "; " +
+                  std::to_string(rep.long_gaps.size()) + " gaps";
+  } else if (!a.imu_csv.empty() || ends_with(imu_path, ".csv")) {
     check_axes(a.csv_axes);
     TaggedImuCsvReport rep;
     in.imu = read_tagged_imu_csv(imu_path, a.imu_tag.empty() ? imu_path + ".tag" : a.imu_tag, {}, &rep);
@@ -533,8 +552,8 @@ NavInputs load_nav_inputs(const NavInputArgs& a) {
     }
     calibrate();  // in the device axes, as `ldv calib static` saw them
     for (ImuIncrement& s : in.imu) {
-      s.dtheta_b_rad = remap(s.dtheta_b_rad, a.csv_axes);
-      s.dvel_b_mps = remap(s.dvel_b_mps, a.csv_axes);
+      s.dtheta_b_rad = device_to_frd(s.dtheta_b_rad, a.csv_axes);
+      s.dvel_b_mps = device_to_frd(s.dvel_b_mps, a.csv_axes);
     }
     in.imu_note = std::to_string(rep.skipped_lines) + " malformed lines and " + std::to_string(rep.skipped_counter) +
                   " bad counters skipped, " + std::to_string(rep.gaps) + " gaps; counter rate from " + rep.rate_source +
@@ -568,7 +587,13 @@ NavInputs load_nav_inputs(const NavInputArgs& a) {
 
   const std::string& gnss_path = in.config.gnss_path;
   if (gnss_path.empty()) throw InputError("ldv", 0, "give --kfgins-config FILE, or --gnss FILE (or --pos FILE)");
-  if (!a.rtklib_pos.empty() || ends_with(gnss_path, ".pos")) {
+  if (gnss_table) {
+    input::GnssTableReport rep;
+    in.gnss = input::read_gnss_table(*gnss_table, &rep);
+    in.file_counts.push_back({"GNSS", gnss_path, static_cast<long>(in.gnss.size()), rep.dropped});
+    in.gnss_note = "ldv.gnss_table: " + rep.layout.describe() + "; " + std::to_string(rep.repeated_rows) +
+                   " sample-and-hold rows dropped (each repeats the fix before it)";
+  } else if (!a.rtklib_pos.empty() || ends_with(gnss_path, ".pos")) {
     gnss::RtklibReadReport rep;
     const auto sols = gnss::read_rtklib_pos(gnss_path, {}, &rep);
     if (sols.empty()) throw InputError(gnss_path, 0, "no solutions in the RTKLIB .pos file");

@@ -1,0 +1,220 @@
+// Issue 49: a drive as its owner published it runs through `ldv nav` with a table description only. The published
+// CSV of a real car is imitated from a simulated drive with truth: one file, 100 Hz rows of an MRU-style IMU in g and
+// deg/s in front-left-up axes, a time column that steps by 0.1 s while the rows come at 100 Hz, and the RTK
+// positions sample-and-hold in every row (a new fix every 20 rows, blank before the first) with no std. The same
+// rows converted by hand into KF-GINS imu.txt / gnss.txt, as the user had to before, give the reference solution.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "common/formats/kfgins_config.hpp"
+#include "common/formats/kfgins_files.hpp"
+#include "common/geo/earth_model.hpp"
+#include "sim/simulator.hpp"
+#include "toolbox/assess/nav_inputs.hpp"
+
+namespace ldv::est {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string output_of(const std::string& command) {
+  const std::string out = command + " 2>&1";
+  std::string text;
+  if (FILE* p = ::popen(out.c_str(), "r")) {
+    char buf[4096];
+    while (size_t n = std::fread(buf, 1, sizeof buf, p)) text.append(buf, n);
+    ::pclose(p);
+  }
+  return text;
+}
+
+double compare_json_number(const std::string& json, const std::string& component, const std::string& field) {
+  const size_t c = json.find("\"" + component + "\"");
+  const size_t f = json.find("\"" + field + "\":", c);
+  return c == std::string::npos || f == std::string::npos ? NAN : std::stod(json.substr(f + field.size() + 3));
+}
+
+TEST(UserTables, GivenACarsPublishedCsvDescribedInTheConfiguration_ThenLdvNavMatchesTheHandConvertedFiles) {
+  sim::SimRequest r;
+  r.grade = "3dm-gx2-typical";
+  r.seed = 3;
+  r.duration_s = 300.0;
+  r.imu_rate_hz = 100.0;
+  r.gnss_rate_hz = 5.0;
+  const sim::SimResult s = sim::simulate(r);
+  const fs::path dir = fs::temp_directory_path() / ("ldv_user_tables_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+
+  // The published file, and the hand conversion of its rows (KF-GINS: increments in front-right-down).
+  const double t0 = s.imu.front().t_s;
+  std::ofstream csv(dir / "GNSS.csv");
+  csv << "Time,Acc_X,Acc_Y,Acc_Z,Gyro_X,Gyro_Y,Gyro_Z,Lat_GNSS,Long_GNSS,Height_GNSS\n";
+  std::vector<ImuIncrement> hand_imu;
+  std::vector<GnssFix> hand_gnss;
+  size_t fix = 0;
+  long blank_rows = 0;
+  for (size_t k = 0; k < s.imu.size(); ++k) {
+    const ImuIncrement& inc = s.imu[k];
+    const double t = t0 + 0.01 * static_cast<double>(k);  // the rows' true time; the file's column lies
+    const Vec3 w_flu_deg_s = Vec3(1, -1, -1).cwiseProduct(inc.dtheta_b_rad) / inc.dt_s / kDegToRad;
+    const Vec3 f_flu_g = Vec3(1, -1, -1).cwiseProduct(inc.dvel_b_mps) / inc.dt_s / earth::kStandardGravity_mps2;
+    char line[512];
+    std::snprintf(line, sizeof line, "%.1f,%.9f,%.9f,%.9f,%.8f,%.8f,%.8f", std::floor(10.0 * (t - t0)) / 10.0,
+                  f_flu_g.x(), f_flu_g.y(), f_flu_g.z(), w_flu_deg_s.x(), w_flu_deg_s.y(), w_flu_deg_s.z());
+    csv << line;
+    // What the user reads back from the printed digits (the hand conversion starts from the file, as the table does).
+    Vec3 w, f;
+    std::sscanf(line, "%*f,%lf,%lf,%lf,%lf,%lf,%lf", &f.x(), &f.y(), &f.z(), &w.x(), &w.y(), &w.z());
+    ImuIncrement h;
+    h.t_s = t;
+    h.dt_s = 0.01;
+    h.dtheta_b_rad = Vec3(1, -1, -1).cwiseProduct(w) * kDegToRad * 0.01;
+    h.dvel_b_mps = Vec3(1, -1, -1).cwiseProduct(f) * earth::kStandardGravity_mps2 * 0.01;
+    if (k > 0) hand_imu.push_back(h);  // the table's first row starts its clock
+    while (fix + 1 < s.gnss.size() && s.gnss[fix + 1].t_s <= t + 1e-6) ++fix;
+    if (s.gnss[fix].t_s <= t + 1e-6 && s.gnss[fix].t_s >= t0 + 1.0) {  // the receiver's first fix after 1 s
+      const GnssFix& g = s.gnss[fix];
+      std::snprintf(line, sizeof line, ",%.10f,%.10f,%.4f\n", g.pos.lat_rad / kDegToRad, g.pos.lon_rad / kDegToRad,
+                    g.pos.h_m);
+      if (hand_gnss.empty() || hand_gnss.back().t_s < g.t_s - 1e-6) {
+        GnssFix hg;
+        hg.t_s = t;
+        std::sscanf(line, ",%lf,%lf,%lf", &hg.pos.lat_rad, &hg.pos.lon_rad, &hg.pos.h_m);
+        hg.pos.lat_rad *= kDegToRad;
+        hg.pos.lon_rad *= kDegToRad;
+        hg.pos_std_ned_m = Vec3(0.02, 0.02, 0.04);  // the user's assumed std: the file has none
+        hand_gnss.push_back(hg);
+      }
+    } else {
+      std::snprintf(line, sizeof line, ",,,\n");  // before the first fix
+      ++blank_rows;
+    }
+    csv << line;
+  }
+  csv.close();
+  write_kfgins_imu((dir / "imu.txt").string(), hand_imu);
+  write_kfgins_gnss((dir / "gnss.txt").string(), hand_gnss, false);
+
+  KfGinsConfig hand = s.kfgins;
+  hand.ldv = YAML::Node();
+  hand.imu_path = (dir / "imu.txt").string();
+  hand.gnss_path = (dir / "gnss.txt").string();
+  hand.imu_rate_hz = 100.0;
+  hand.end_time_s = -1;
+  save_kfgins_config(hand, (dir / "hand.yaml").string());
+  // The table description: the same configuration without imupath / gnsspath.
+  std::ifstream in(dir / "hand.yaml");
+  std::ofstream table(dir / "table.yaml");
+  for (std::string l; std::getline(in, l);)
+    if (l.rfind("imupath:", 0) != 0 && l.rfind("gnsspath:", 0) != 0) table << l << "\n";
+  char offset[64];
+  std::snprintf(offset, sizeof offset, "%.3f", t0);
+  table << "ldv:\n"
+        << "  imu_table:\n    path: GNSS.csv\n    time: {row_period_s: 0.01, offset_s: " << offset << "}\n"
+        << "    gyro: {columns: [Gyro_X, Gyro_Y, Gyro_Z], unit: deg/s}\n"
+        << "    accel: {columns: [Acc_X, Acc_Y, Acc_Z], unit: g}\n"
+        << "    axes: [1, -2, -3]\n    sample: interval_mean\n"
+        << "  gnss_table:\n    path: GNSS.csv\n    time: {row_period_s: 0.01, offset_s: " << offset << "}\n"
+        << "    position: {columns: [Lat_GNSS, Long_GNSS, Height_GNSS]}\n"
+        << "    std_m: [0.02, 0.02, 0.04]\n    repeated: drop\n";
+  table.close();
+  sim::SimResult copy = s;
+  sim::write_outputs(copy, (dir / "sim").string());  // truth.nav
+
+  const std::string ldv = std::string(LDV_BIN_DIR) + "/ldv", week = " --week " + std::to_string(r.gps_week);
+  const std::string log = output_of(ldv + " nav" + week + " --kfgins-config " + (dir / "table.yaml").string() +
+                                    " --out " + (dir / "table.nav").string());
+  std::printf("%s\n", log.c_str());
+  output_of(ldv + " nav --quiet" + week + " --kfgins-config " + (dir / "hand.yaml").string() + " --out " +
+            (dir / "hand.nav").string());
+  ASSERT_TRUE(fs::exists(dir / "table.nav")) << log;
+  EXPECT_NE(log.find(std::to_string(hand_gnss.size()) + " records kept"), std::string::npos) << "every fix, once";
+  EXPECT_NE(log.find("sample-and-hold rows dropped"), std::string::npos) << log;
+  EXPECT_NE(log.find(std::to_string(blank_rows) + " dropped"), std::string::npos) << "the rows before the first fix";
+
+  const std::string same =
+      output_of(ldv + " compare --json " + (dir / "table.nav").string() + " " + (dir / "hand.nav").string());
+  const std::string truth_t =
+      output_of(ldv + " compare --json " + (dir / "table.nav").string() + " " + (dir / "sim/truth.nav").string());
+  const std::string truth_h =
+      output_of(ldv + " compare --json " + (dir / "hand.nav").string() + " " + (dir / "sim/truth.nav").string());
+  for (const char* c : {"north", "east", "down"}) {
+    const double diff = compare_json_number(same, c, "max_abs");
+    const double table_rms = compare_json_number(truth_t, c, "rms"), hand_rms = compare_json_number(truth_h, c, "rms");
+    std::printf("[ info ] %s: table vs hand-converted at most %.4f m; against truth RMS %.4f vs %.4f m\n", c, diff,
+                table_rms, hand_rms);
+    EXPECT_LT(diff, 0.01) << c << ": " << same;
+    EXPECT_LT(std::abs(table_rms - hand_rms), 0.01) << c;
+    EXPECT_LT(table_rms, 0.2) << c << ": the drive is tracked\n" << truth_t;
+  }
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace ldv::est
+
+namespace ldv::est {
+namespace {
+
+// A wrong description is refused naming the configuration file, the line and the user's own key, with what was
+// expected; a column the file lacks is refused naming the data file and listing its header.
+TEST(UserTables, GivenAWrongDescription_ThenTheErrorNamesTheFileLineAndKey) {
+  const fs::path dir = fs::temp_directory_path() / ("ldv_user_tables_err_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "log.csv") << "t,gx,gy,gz,ax,ay,az,lat,lon,h\n0,0,0,0,0,0,1,40,-105,1600\n"
+                                 << "0.01,0,0,0,0,0,1,40,-105,1600\n";
+  const auto error_of = [&](const std::string& imu_table, const std::string& gnss_table) {
+    std::ofstream(dir / "c.yaml") << "imunoise:\n  arw: [1, 1, 1]\n  vrw: [1, 1, 1]\n  gbstd: [10, 10, 10]\n"
+                                  << "  abstd: [100, 100, 100]\n  gsstd: [0, 0, 0]\n  asstd: [0, 0, 0]\n  corrtime: 1\n"
+                                  << "ldv:\n  imu_table:\n"
+                                  << imu_table << "  gnss_table:\n"
+                                  << gnss_table;
+    assess::NavInputArgs a;
+    a.config = (dir / "c.yaml").string();
+    try {
+      assess::load_nav_inputs(a);
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string imu_ok =
+      "    path: log.csv\n    time: {column: t}\n    gyro: {columns: [gx, gy, gz], unit: deg/s}\n"
+      "    accel: {columns: [ax, ay, az], unit: g}\n";
+  const std::string gnss_ok =
+      "    path: log.csv\n    time: {column: t}\n    position: {columns: [lat, lon, h]}\n"
+      "    std_m: [0.02, 0.02, 0.04]\n";
+  const std::string config = (dir / "c.yaml").string();
+  const std::string unit = error_of(
+      "    path: log.csv\n    time: {column: t}\n    gyro: {columns: [gx, gy, gz], unit: dps}\n"
+      "    accel: {columns: [ax, ay, az], unit: g}\n",
+      gnss_ok);
+  EXPECT_NE(unit.find(config + ":13: ldv.imu_table.gyro.unit"), std::string::npos) << unit;
+  EXPECT_NE(unit.find("deg/s"), std::string::npos) << unit;
+  const std::string no_std = error_of(imu_ok,
+                                      "    path: log.csv\n    time: {column: t}\n"
+                                      "    position: {columns: [lat, lon, h]}\n");
+  EXPECT_NE(no_std.find("ldv.gnss_table.std_m"), std::string::npos) << no_std;
+  const std::string typo = error_of(imu_ok + "    axis: [1, 2, 3]\n", gnss_ok);
+  EXPECT_NE(typo.find("ldv.imu_table.axis"), std::string::npos) << typo;
+  EXPECT_NE(typo.find("axes"), std::string::npos) << "the nearest key: " << typo;
+  const std::string column = error_of(
+      "    path: log.csv\n    time: {column: t}\n    gyro: {columns: [Gyro_X, gy, gz], unit: deg/s}\n"
+      "    accel: {columns: [ax, ay, az], unit: g}\n",
+      gnss_ok);
+  EXPECT_NE(column.find((dir / "log.csv").string() + ":1: ldv.imu_table.gyro.columns: no column 'Gyro_X' (the header "
+                                                     "names: t, gx, gy, gz, ax, ay, az, lat, lon, h)"),
+            std::string::npos)
+      << column;
+  EXPECT_EQ(error_of(imu_ok, gnss_ok).find("ldv.imu_table"), std::string::npos) << "a right description is read";
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace ldv::est
