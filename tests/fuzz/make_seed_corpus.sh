@@ -34,6 +34,16 @@ for i in range(40):
     csv += b"0.01,-0.02,1.0,0.5,-0.5,0.1,%d\n" % (1000 + 10 * i)
     tag += struct.pack("<II", 10 * i + 2, len(csv))
 put("fuzz_rtklib_files", "tagged_csv", b"\x01" + struct.pack("<H", len(tag)) + bytes(tag) + csv)
+# fuzz_user_tables: selector bits (1 row clock, 2 IMU, 4 columns by name, 8 increments / ECEF, 16 interval means /
+# std and quality columns), then the data file
+put("fuzz_user_tables", "imu_named_csv", b"\x06t,gx,gy,gz,ax,ay,az\n0,0.1,0.2,0.3,0,0,1\n10,0.1,0.2,0.3,0,0,1\n"
+    b"20,0.2,0.2,0.3,0,0.01,1\n")
+put("fuzz_user_tables", "imu_rows_semicolon", b"\x13sep=;\n\"t\";\"a\";\"b\";\"c\";\"d\";\"e\";\"f\"\n"
+    b"0;0,1;0,2;0,3;0;0;1\n10;0,1;0,2;0,3;0;0;1\n")
+put("fuzz_user_tables", "gnss_named_ws", b"\x04% t lat lon h\n0 40.1 -105.1 1600\n200 40.1 -105.1 1600\n"
+    b"200 40.1 -105.1 1600\n400 40.2 -105.2 1601\n")
+put("fuzz_user_tables", "gnss_ecef_std_quality", b"\x18t,x,y,z,sx,sy,sz,q\n"
+    b"0,-1283000.1,-4720000.2,4079000.3,0.01,0.01,0.02,4\n200,-1283000.2,-4720000.2,4079000.3,0.01,0.01,0.02,5\n")
 # fuzz_gnss_stream: selector (0 auto, 1 nmea, 2 ubx, 3 rtklib), chunk size, bytes
 nmea = head(f"{sim}/gnss.nmea", 40)
 put("fuzz_gnss_stream", "nmea_auto", b"\x00\x10" + nmea)
