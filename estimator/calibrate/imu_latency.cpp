@@ -197,9 +197,29 @@ ImuLatencyEstimate estimate_imu_latency(const std::vector<ImuIncrement>& imu, co
   for (size_t k = 0; k < iv.size(); ++k)
     if (std::abs(e[k]) <= 5.0 * robust_sigma) kept.push_back(iv[k]);
   out.outlier_intervals = static_cast<int>(iv.size() - kept.size());
+  const std::vector<CourseInterval>* used = &iv;
   if (kept.size() < iv.size() && static_cast<int>(kept.size()) >= o.min_intervals) {
     ImuLatencyEstimate again = out;
-    if (search(kept, again)) out = again;  // else the first estimate stands
+    if (search(kept, again)) out = again, used = &kept;  // else the first estimate stands
+  }
+  // Delete-a-group jackknife: var = (g-1)/g sum (lag_i - mean)^2 over the estimates without group i.
+  const int g = o.jackknife_groups;
+  if (g > 1 && static_cast<int>(used->size()) >= g * 4) {
+    std::vector<double> lags;
+    const size_t n = used->size();
+    for (int i = 0; i < g; ++i) {
+      const size_t begin = n * i / g, end = n * (i + 1) / g;
+      std::vector<CourseInterval> rest(used->begin(), used->begin() + static_cast<long>(begin));
+      rest.insert(rest.end(), used->begin() + static_cast<long>(end), used->end());
+      ImuLatencyEstimate part = out;
+      if (search(rest, part)) lags.push_back(part.lag_s);
+    }
+    if (static_cast<int>(lags.size()) == g) {
+      double mean = 0.0, ss = 0.0;
+      for (const double l : lags) mean += l / g;
+      for (const double l : lags) ss += (l - mean) * (l - mean);
+      out.sigma_s = std::sqrt((g - 1.0) / g * ss);
+    }
   }
   return out;
 }

@@ -27,6 +27,11 @@ struct ImuLatencyOptions {
   double min_speed_mps = 1.0;    // course taken only when moving
   int min_intervals = 20;        // fewer turning intervals: no estimate
   double min_turn_rad_s = 0.02;  // an interval counts as turning above this course rate
+  // The sigma from a delete-a-group jackknife over this many contiguous groups of intervals (0: from the misfit's
+  // curvature and residual scatter, as if the residuals were independent). Consecutive course changes share a
+  // chord, so their errors are correlated: the curvature's sigma was 4-12x too large on simulated drives with the
+  // clock offset known (montecarlo_timesync.cpp); the jackknife sees the correlation. `ldv timesync` uses it.
+  int jackknife_groups = 0;
 };
 
 struct ImuLatencyEstimate {
