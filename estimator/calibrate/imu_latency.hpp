@@ -53,7 +53,7 @@ struct ImuLatencyEstimate {
   }
   // Worth correcting the data for without asking the filter: beyond 3 sigma, beyond the lever-arm equivalent, at
   // least 5 ms, and known to better than kMaxSigma_s. (`ldv nav` lets the filter decide on a lag beyond 3 sigma
-  // that fails the other two: toolbox/assess/nav_inputs.cpp.)
+  // that fails the other two: drive_imu_latency.cpp.)
   static constexpr double kMaxSigma_s = 0.02;
   bool significant() const {
     return valid && std::abs(lag_s) > std::max({3.0 * sigma_s, 0.005, lever_arm_equivalent_lag_s()}) &&

@@ -51,15 +51,15 @@ assess::NavInputs load(const std::string& name, double latency_s, const std::vec
 
 TEST(ImuLatencyDecision, GivenALagALeverArmCouldExplain_WhenTheFilterFitsBetterWithIt_ThenItIsTakenOut) {
   const assess::NavInputs in = load("lag", 0.147, {});
-  ASSERT_TRUE(in.imu_latency.valid);
-  ASSERT_LT(in.imu_latency.lag_s, in.imu_latency.lever_arm_equivalent_lag_s()) << "the ambiguous case";
+  ASSERT_TRUE(in.latency.turns.valid);
+  ASSERT_LT(in.latency.turns.lag_s, in.latency.turns.lever_arm_equivalent_lag_s()) << "the ambiguous case";
   ASSERT_NE(in.imu_note.find("the filter needs"), std::string::npos) << in.imu_note;
-  EXPECT_TRUE(in.imu_latency_applied);
-  EXPECT_LT(std::abs(in.imu_latency.lag_s - 0.147), 3.0 * in.imu_latency.sigma_s);
+  EXPECT_TRUE(in.latency.applied);
+  EXPECT_LT(std::abs(in.latency.turns.lag_s - 0.147), 3.0 * in.latency.turns.sigma_s);
   // Refined by a filter pass with the time_offset state: tighter, and still around the truth.
-  ASSERT_TRUE(in.imu_latency_refined.done) << in.imu_note;
-  EXPECT_LT(in.imu_latency_refined.sigma_s, in.imu_latency.sigma_s);
-  EXPECT_LT(std::abs(in.imu_latency_refined.lag_s - 0.147), 3.0 * in.imu_latency_refined.sigma_s);
+  ASSERT_TRUE(in.latency.refined.done) << in.imu_note;
+  EXPECT_LT(in.latency.refined.sigma_s, in.latency.turns.sigma_s);
+  EXPECT_LT(std::abs(in.latency.refined.lag_s - 0.147), 3.0 * in.latency.refined.sigma_s);
 }
 
 // Out of a bay in reverse and back at 4 m/s: few and gentle turns, so the turns know a 281 ms lag only to
@@ -68,12 +68,12 @@ TEST(ImuLatencyDecision, GivenALagALeverArmCouldExplain_WhenTheFilterFitsBetterW
 // lever arm could explain, and the likelihood scan refines what was taken out.
 TEST(ImuLatencyDecision, GivenALagTheTurnsKnowOnlyRoughly_ThenTheFilterDecidesAndTakesItOut) {
   const assess::NavInputs in = load("rough", 0.281, {}, "hg1700-typical", 5.0, 10.0, 50, "reversing");
-  ASSERT_TRUE(in.imu_latency.valid);
-  ASSERT_GE(in.imu_latency.sigma_s, ImuLatencyEstimate::kMaxSigma_s) << "the case: known roughly";
-  ASSERT_FALSE(in.imu_latency.significant());
-  EXPECT_TRUE(in.imu_latency_applied) << in.imu_note;
-  ASSERT_TRUE(in.imu_latency_refined.done) << in.imu_note;
-  EXPECT_LT(std::abs(in.imu_latency_refined.lag_s - 0.281), std::max(0.005, 3.0 * in.imu_latency_refined.sigma_s))
+  ASSERT_TRUE(in.latency.turns.valid);
+  ASSERT_GE(in.latency.turns.sigma_s, ImuLatencyEstimate::kMaxSigma_s) << "the case: known roughly";
+  ASSERT_FALSE(in.latency.turns.significant());
+  EXPECT_TRUE(in.latency.applied) << in.imu_note;
+  ASSERT_TRUE(in.latency.refined.done) << in.imu_note;
+  EXPECT_LT(std::abs(in.latency.refined.lag_s - 0.281), std::max(0.005, 3.0 * in.latency.refined.sigma_s))
       << in.imu_note;
 }
 
@@ -84,13 +84,13 @@ TEST(ImuLatencyDecision, GivenALagTheTurnsKnowOnlyRoughly_ThenTheFilterDecidesAn
 // (the sweep's 144 ms, read as 142 +- 48). The filter now decides from 2 sigmas.
 TEST(ImuLatencyDecision, GivenALagTheTurnsShowAtTwoToThreeSigmas_ThenTheFilterDecidesAndTakesItOut) {
   const assess::NavInputs in = load("band", 0.12, {}, "hg1900-typical", 10.0, 0.0, 90, "stops", true);
-  const double z = std::abs(in.imu_latency.lag_s) / in.imu_latency.sigma_s;
-  ASSERT_TRUE(in.imu_latency.valid);
+  const double z = std::abs(in.latency.turns.lag_s) / in.latency.turns.sigma_s;
+  ASSERT_TRUE(in.latency.turns.valid);
   ASSERT_GT(z, 2.0) << "the case: 2-3 sigmas";
   ASSERT_LT(z, 3.0) << "the case: 2-3 sigmas";
-  EXPECT_TRUE(in.imu_latency_applied) << in.imu_note;
-  ASSERT_TRUE(in.imu_latency_refined.done) << in.imu_note;
-  EXPECT_LT(std::abs(in.imu_latency_refined.lag_s - 0.12), std::max(0.005, 3.0 * in.imu_latency_refined.sigma_s))
+  EXPECT_TRUE(in.latency.applied) << in.imu_note;
+  ASSERT_TRUE(in.latency.refined.done) << in.imu_note;
+  EXPECT_LT(std::abs(in.latency.refined.lag_s - 0.12), std::max(0.005, 3.0 * in.latency.refined.sigma_s))
       << in.imu_note;
 }
 
@@ -101,20 +101,20 @@ TEST(ImuLatencyDecision, GivenALagTheTurnsShowAtTwoToThreeSigmas_ThenTheFilterDe
 // at a sigma of 4.6 ms, an RMS z of 3.3 over 24 drives.)
 TEST(ImuLatencyDecision, GivenAMemsImuLateBy240ms_ThenTheFilterPassRefinesTheTurnsEstimate) {
   const assess::NavInputs in = load("mems", 0.240, {}, "3dm-gx2-typical", 4.0, 0.0, 4);
-  ASSERT_TRUE(in.imu_latency_applied) << in.imu_note;
-  ASSERT_TRUE(in.imu_latency_refined.done) << in.imu_note;
-  EXPECT_LT(in.imu_latency_refined.sigma_s, 0.7 * in.imu_latency.sigma_s);
-  EXPECT_LT(std::abs(in.imu_latency_refined.lag_s - 0.240), 3.0 * in.imu_latency_refined.sigma_s);
+  ASSERT_TRUE(in.latency.applied) << in.imu_note;
+  ASSERT_TRUE(in.latency.refined.done) << in.imu_note;
+  EXPECT_LT(in.latency.refined.sigma_s, 0.7 * in.latency.turns.sigma_s);
+  EXPECT_LT(std::abs(in.latency.refined.lag_s - 0.240), 3.0 * in.latency.refined.sigma_s);
   double sum_z2 = 0.0;
   int refined = 0;
   for (std::uint64_t seed = 1; seed <= 6; ++seed) {
     const assess::NavInputs v = load("mems_vibrating", 0.240, {}, "3dm-gx2-typical", 4.0, 10.0, seed);
-    ASSERT_TRUE(v.imu_latency_applied) << v.imu_note;
-    if (!v.imu_latency_refined.done) continue;  // left at the turns' estimate: checked by ImuLatency*
-    const double z = (v.imu_latency_refined.lag_s - 0.240) / v.imu_latency_refined.sigma_s;
+    ASSERT_TRUE(v.latency.applied) << v.imu_note;
+    if (!v.latency.refined.done) continue;  // left at the turns' estimate: checked by ImuLatency*
+    const double z = (v.latency.refined.lag_s - 0.240) / v.latency.refined.sigma_s;
     std::printf("seed %llu: turns %.1f +- %.1f ms, refined %.1f +- %.1f ms (z %.2f), true 240 ms\n",
-                static_cast<unsigned long long>(seed), 1e3 * v.imu_latency.lag_s, 1e3 * v.imu_latency.sigma_s,
-                1e3 * v.imu_latency_refined.lag_s, 1e3 * v.imu_latency_refined.sigma_s, z);
+                static_cast<unsigned long long>(seed), 1e3 * v.latency.turns.lag_s, 1e3 * v.latency.turns.sigma_s,
+                1e3 * v.latency.refined.lag_s, 1e3 * v.latency.refined.sigma_s, z);
     EXPECT_LT(std::abs(z), 4.0) << "seed " << seed;
     sum_z2 += z * z;
     ++refined;
@@ -127,7 +127,7 @@ TEST(ImuLatencyDecision, GivenAForwardLeverArmAndNoLag_ThenNoLagIsTakenOut) {
   const assess::NavInputs in = load("lever", 0.0, {"lever_arm=1.2,0,0"});
   // The ambiguous case (a lag beyond 3 sigma that the lever arm could explain), decided by the filter.
   ASSERT_NE(in.imu_note.find("the filter needs"), std::string::npos) << in.imu_note;
-  EXPECT_FALSE(in.imu_latency_applied) << in.imu_latency.lag_s << " +- " << in.imu_latency.sigma_s;
+  EXPECT_FALSE(in.latency.applied) << in.latency.turns.lag_s << " +- " << in.latency.turns.sigma_s;
 }
 
 // Issue 47, item 6: a new user's drive (`ldv sim --grade hg1700-typical --seed 1 --lever-arm 0.5,-0.3,-1.2`): the
@@ -138,10 +138,10 @@ TEST(ImuLatencyDecision, GivenAForwardLeverArmAndNoLag_ThenNoLagIsTakenOut) {
 TEST(ImuLatencyDecision, GivenALeverArmTheLikelihoodPrefersToNothing_ThenTheLeverArmCompetesAndNoLagIsTakenOut) {
   const assess::NavInputs in =
       load("lever_vs_lag", 0.0, {"lever_arm=0.5,-0.3,-1.2"}, "hg1700-typical", 1.0, 0.0, 1, "drive", false, 600.0);
-  ASSERT_TRUE(in.imu_latency.valid);
+  ASSERT_TRUE(in.latency.turns.valid);
   ASSERT_NE(in.imu_note.find("a lever arm instead of the lag"), std::string::npos) << in.imu_note;
-  EXPECT_TRUE(in.imu_latency_lever_explains) << in.imu_note;
-  EXPECT_FALSE(in.imu_latency_applied) << in.imu_latency.lag_s << " +- " << in.imu_latency.sigma_s;
+  EXPECT_TRUE(in.latency.lever_explains) << in.imu_note;
+  EXPECT_FALSE(in.latency.applied) << in.latency.turns.lag_s << " +- " << in.latency.turns.sigma_s;
 }
 
 }  // namespace
@@ -159,9 +159,9 @@ TEST(ImuLatencyDecision, GivenAVibratingMemsImuLateBy64ms_ThenTheLikelihoodTakes
   constexpr double kLatency_s = 0.0643;
   const assess::NavInputs in = load("mems", kLatency_s, {}, "3dm-gx2-typical", 1.0, 10.0, 3);
   ASSERT_NE(in.imu_note.find("the filter needs"), std::string::npos) << "not the ambiguous case: " << in.imu_note;
-  EXPECT_TRUE(in.imu_latency_applied) << in.imu_note;
-  const double lag_s = in.imu_latency_refined.done ? in.imu_latency_refined.lag_s : in.imu_latency.lag_s;
-  const double sigma_s = in.imu_latency_refined.done ? in.imu_latency_refined.sigma_s : in.imu_latency.sigma_s;
+  EXPECT_TRUE(in.latency.applied) << in.imu_note;
+  const double lag_s = in.latency.refined.done ? in.latency.refined.lag_s : in.latency.turns.lag_s;
+  const double sigma_s = in.latency.refined.done ? in.latency.refined.sigma_s : in.latency.turns.sigma_s;
   EXPECT_NEAR(lag_s, kLatency_s, 3.0 * 2.0 * sigma_s) << "sigma under vibration is about half the real scatter";
 }
 
@@ -182,13 +182,13 @@ TEST(ImuLatencyDecision, GivenTheRealWalkWhoseTurnsReadALagTheFixesRefute_ThenTh
   a.config = config.string();
   const assess::NavInputs in = assess::load_nav_inputs(a);
   std::filesystem::remove(config);
-  ASSERT_TRUE(in.imu_latency.valid) << in.imu_note;
-  ASSERT_GT(in.imu_latency.lag_s, 0.3) << "the turns' reading this test is about";
-  std::printf("[ info ] the walk: turns %.1f +- %.1f ms, -2 ln L gain with the lag %.1f\n", 1e3 * in.imu_latency.lag_s,
-              1e3 * in.imu_latency.sigma_s, in.imu_latency_likelihood_gain);
-  ASSERT_TRUE(std::isfinite(in.imu_latency_likelihood_gain)) << in.imu_note;
-  EXPECT_LT(in.imu_latency_likelihood_gain, -100.0) << in.imu_note;  // refuted beyond any test's threshold
-  EXPECT_FALSE(in.imu_latency_applied) << in.imu_note;
+  ASSERT_TRUE(in.latency.turns.valid) << in.imu_note;
+  ASSERT_GT(in.latency.turns.lag_s, 0.3) << "the turns' reading this test is about";
+  std::printf("[ info ] the walk: turns %.1f +- %.1f ms, -2 ln L gain with the lag %.1f\n",
+              1e3 * in.latency.turns.lag_s, 1e3 * in.latency.turns.sigma_s, in.latency.likelihood_gain);
+  ASSERT_TRUE(std::isfinite(in.latency.likelihood_gain)) << in.imu_note;
+  EXPECT_LT(in.latency.likelihood_gain, -100.0) << in.imu_note;  // refuted beyond any test's threshold
+  EXPECT_FALSE(in.latency.applied) << in.imu_note;
   EXPECT_EQ(in.imu_note.find("could not be compared"), std::string::npos) << in.imu_note;
 }
 

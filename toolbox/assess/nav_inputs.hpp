@@ -25,8 +25,8 @@
 #include "common/formats/kfgins_config.hpp"
 #include "common/formats/nav_types.hpp"
 #include "common/io/dropped_records.hpp"
+#include "estimator/calibrate/drive_imu_latency.hpp"
 #include "estimator/calibrate/gnss_velocity_check.hpp"
-#include "estimator/calibrate/imu_latency.hpp"
 #include "estimator/calibrate/imu_stamp_jitter.hpp"
 #include "estimator/options.hpp"
 #include "estimator/update/observation.hpp"
@@ -92,18 +92,9 @@ struct NavInputs {
   // From a .pos file (its earliest week), else -1. .pos fix times are seconds since the start of this week,
   // continuous across a week rollover (past 604800 s).
   int gps_week = -1;
-  est::ImuLatencyEstimate imu_latency;  // when estimated (NavInputArgs::imu_latency); applied if significant()
-  bool imu_latency_applied = false;
-  // Not taken out because a forward lever arm explained the fixes as well or better (the pair is the model's).
-  bool imu_latency_lever_explains = false;
-  // Where the filter judged the turns' lag over the whole file: -2 ln L of the GNSS positions without it minus with
-  // it (positive: the lag fits better), NaN where it was not judged.
-  double imu_latency_likelihood_gain = NAN;
-  // The latency after a filter pass with the time_offset state refined it (NavInputArgs::refine_latency_in_filter).
-  struct RefinedLatency {
-    bool done = false;
-    double lag_s = 0.0, sigma_s = 0.0;
-  } imu_latency_refined;
+  // What the IMU latency search found and decided (NavInputArgs::imu_latency; estimator/calibrate/
+  // drive_imu_latency.hpp): `latency.turns` when estimated, `latency.applied` when a lag was taken out.
+  est::DriveImuLatency latency;
   // What was decided about the GNSS velocities (estimator/calibrate/gnss_velocity_check.hpp), "" if none.
   std::string gnss_velocity_note;
   std::optional<est::GnssVelocityCheck> gnss_velocity_check;

@@ -142,26 +142,26 @@ void run_diagnose(const DiagnoseArgs& a) {
   diag::Diagnosis d = diag::diagnose(in, opt);
   // The IMU latency the input loading looked for (and took out of the stamps when significant) is a finding of
   // the diagnosis too: a user must learn that the stamps were late, not only get a model that fits.
-  if (loaded.imu_latency.valid) {
+  if (loaded.latency.turns.valid) {
     diag::SelfCalibration c;
     c.name = "time_offset";
     // The filter pass's refinement where there was one (nav_inputs.cpp refine_latency_with_filter).
-    const bool refined = loaded.imu_latency_refined.done;
-    const double lag_s = refined ? loaded.imu_latency_refined.lag_s : loaded.imu_latency.lag_s;
-    const double sigma_s = refined ? loaded.imu_latency_refined.sigma_s : loaded.imu_latency.sigma_s;
+    const bool refined = loaded.latency.refined.done;
+    const double lag_s = refined ? loaded.latency.refined.lag_s : loaded.latency.turns.lag_s;
+    const double sigma_s = refined ? loaded.latency.refined.sigma_s : loaded.latency.turns.sigma_s;
     c.estimate_si = Eigen::VectorXd::Constant(1, -lag_s);
     c.sigma_si = Eigen::VectorXd::Constant(1, sigma_s);
     c.unit = "ms";
     c.print_scale = 1e3;
-    c.applied = loaded.imu_latency_applied;
+    c.applied = loaded.latency.applied;
     char b[320];
     std::snprintf(b, sizeof b,
                   "IMU stamps late by %.1f +- %.1f ms (the turns' heading changes against the GNSS track); %s",
                   1e3 * lag_s, 1e3 * sigma_s,
-                  c.applied                           ? "taken out of the stamps before the diagnosis"
-                  : loaded.imu_latency_lever_explains ? "not taken out: a forward lever arm explains the fixes as "
-                                                        "well or better (the screening below weighs both)"
-                                                      : "not taken out (not significant)");
+                  c.applied                       ? "taken out of the stamps before the diagnosis"
+                  : loaded.latency.lever_explains ? "not taken out: a forward lever arm explains the fixes as "
+                                                    "well or better (the screening below weighs both)"
+                                                  : "not taken out (not significant)");
     c.note = b;
     d.self_calibration.insert(d.self_calibration.begin(), c);
   }

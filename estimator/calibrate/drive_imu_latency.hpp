@@ -1,0 +1,42 @@
+#pragma once
+// Whether a drive's IMU stamps are late against GNSS time (a consumer IMU behind a USB or serial buffer), decided
+// over the whole file before the filter runs: the turns' estimate (imu_latency.hpp) is taken out when significant;
+// a lag a forward antenna lever arm could explain, or one the turns know only roughly, is judged by filter passes
+// with and without it (the IMU noise they need, the GNSS positions' likelihood) and against a lever arm estimated
+// on the way; a lag taken out is refined by the likelihood over further shifts. `ldv nav`, `outage`, `diagnose`
+// read it through toolbox/assess/nav_inputs.
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "common/formats/kfgins_config.hpp"
+#include "common/formats/nav_types.hpp"
+#include "estimator/calibrate/imu_latency.hpp"
+#include "estimator/options.hpp"
+
+namespace ldv::est {
+
+struct DriveImuLatency {
+  ImuLatencyEstimate turns;  // from the turns (valid when estimated)
+  bool applied = false;      // a lag taken out of the stamps
+  // Not taken out because a forward lever arm explained the fixes as well or better (the pair is the model's).
+  bool lever_explains = false;
+  // Where the filter judged the turns' lag over the whole file: -2 ln L of the GNSS positions without it minus with
+  // it (positive: the lag fits better), NaN where it was not judged.
+  double likelihood_gain = NAN;
+  // The latency after the GNSS likelihood over further IMU shifts refined a lag taken out.
+  struct Refined {
+    bool done = false;
+    double lag_s = 0.0, sigma_s = 0.0;
+  } refined;
+  std::string note;  // "; IMU latency ...": what was found and decided, for `ldv nav`'s first line
+};
+
+// imu and gnss in time order on one time base; a lag taken out is taken out of `imu` (in place). options: the run's
+// filter options (the passes judge with them); refine_in_filter: refine a lag taken out (off in `ldv diagnose`,
+// which names a time_offset itself).
+DriveImuLatency decide_drive_imu_latency(std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
+                                         const KfGinsConfig& config, const FilterOptions& options,
+                                         bool refine_in_filter);
+
+}  // namespace ldv::est
