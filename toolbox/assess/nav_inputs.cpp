@@ -1,95 +1,21 @@
 #include "toolbox/assess/nav_inputs.hpp"
 
-#include <Eigen/Cholesky>
-#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <optional>
 
-#include "common/config/config_section.hpp"
 #include "common/formats/imu_calibration.hpp"
-#include "common/formats/kfgins_files.hpp"
 #include "common/formats/odometer_text.hpp"
-#include "common/formats/rtklib_solution.hpp"
-#include "common/formats/tagged_imu_csv.hpp"
 #include "common/io/input_error.hpp"
-#include "common/math/chi_square.hpp"
-#include "common/math/device_axes.hpp"
 #include "estimator/calibrate/drive_imu_latency.hpp"
 #include "estimator/calibrate/gnss_velocity_check.hpp"
 #include "estimator/filter/nav_filter.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "estimator/update/odometer.hpp"
-#include "input/tables/gnss_table.hpp"
-#include "input/tables/imu_table.hpp"
 
 namespace ldv::assess {
 namespace {
-
-void check_axes(const std::vector<int>& axes) {
-  if (!is_device_axes(axes))
-    throw InputError("--csv-axes", 0, "expected a permutation of 1 2 3 with signs, e.g. 1 -2 -3");
-}
-
-bool ends_with(const std::string& s, const char* suffix) {
-  const std::string x(suffix);
-  return s.size() >= x.size() && s.compare(s.size() - x.size(), x.size(), x) == 0;
-}
-
-// The calibration file: the command line's, else the configuration's ldv.calibration (resolved like imupath).
-// Seconds since the start of GPS week `ref_week`: continuous across a week rollover (sow restarts at 0,
-// this goes on past 604800), so time order is the order of this number.
-double continuous_seconds(const GpsTime& t, int ref_week) { return (t.week - ref_week) * kSecondsPerWeek + t.sow_s; }
-
-// A .pos file's solutions in time order. Each record stands on its own time tag: one record stamped
-// ahead (a glitch, or a real forward jump) is placed at its time instead of making every later one look
-// repeated. Records at the same epoch as the one before are dropped (kept: the first in the file).
-struct PosTimeOrder {
-  std::vector<const gnss::GnssSolution*> solutions;
-  long repeated = 0, out_of_order = 0;
-};
-PosTimeOrder in_time_order(const std::vector<gnss::GnssSolution>& sols, int& ref_week) {
-  // The drive's first week (KF-GINS files count on from it past a rollover): the earliest week next to the
-  // median one. One record of a far week (a corrupted date) must not move every other record's time (the
-  // earliest week did: a record of 1980 put all the others 2300 weeks ahead of the IMU).
-  std::vector<int> weeks;
-  weeks.reserve(sols.size());
-  for (const auto& s : sols) weeks.push_back(s.time.week);
-  std::nth_element(weeks.begin(), weeks.begin() + weeks.size() / 2, weeks.end());
-  const int median_week = weeks[weeks.size() / 2];
-  ref_week = median_week;
-  for (const auto& s : sols)
-    if (s.time.week == median_week - 1) ref_week = median_week - 1;
-  PosTimeOrder o;
-  for (std::size_t i = 0; i < sols.size(); ++i) {
-    if (i > 0 && sols[i].time.total_seconds() < sols[i - 1].time.total_seconds()) ++o.out_of_order;
-    o.solutions.push_back(&sols[i]);
-  }
-  const auto t = [](const gnss::GnssSolution* s) { return s->time.total_seconds(); };
-  std::stable_sort(o.solutions.begin(), o.solutions.end(), [&](auto* x, auto* y) { return t(x) < t(y); });
-  constexpr double kSameEpoch_s = 1e-6;  // .pos prints milliseconds
-  std::vector<const gnss::GnssSolution*> kept;
-  for (const auto* s : o.solutions) {
-    if (!kept.empty() && t(s) - t(kept.back()) < kSameEpoch_s) {
-      ++o.repeated;
-      continue;
-    }
-    kept.push_back(s);
-  }
-  o.solutions = std::move(kept);
-  return o;
-}
-
-std::string calibration_path(const NavInputArgs& a, const KfGinsConfig& cfg) {
-  if (!a.calibration.empty()) return a.calibration;
-  if (!cfg.ldv.IsDefined() || cfg.ldv.IsNull() || !cfg.ldv["calibration"]) return "";
-  const YAML::Node n = cfg.ldv["calibration"];
-  if (!n.IsScalar() || n.Scalar().empty())
-    throw InputError(cfg.config_path, n.Mark().line + 1, "key 'ldv.calibration': expected the path of a calibration file");
-  return resolve_data_path(n.Scalar(), cfg.config_path);
-}
 
 // After the calibration, what is left of the bias and scale errors is its uncertainty: that becomes the
 // filter's prior, unless the configuration gives one or the calibration does not know it (a zero sigma).
@@ -194,128 +120,37 @@ NavInputs load_nav_inputs(const NavInputArgs& a) {
   const double height_offset_m = setting(a.pos_height_offset_m, "pos_height_offset_m");
   const double float_std_min_m = setting(a.float_std_min_m, "float_std_min_m");
   const double imu_time_shift_s = setting(a.imu_time_shift_s, "imu_time_shift_s");
-  if (!a.imu.empty()) in.config.imu_path = a.imu;
-  if (!a.imu_csv.empty()) in.config.imu_path = a.imu_csv;
-  if (!a.gnss.empty()) in.config.gnss_path = a.gnss;
-  if (!a.rtklib_pos.empty()) in.config.gnss_path = a.rtklib_pos;
-
-  // A user's own tables (ldv.imu_table / ldv.gnss_table: input/tables/) unless the command line names a file.
-  const auto table_section = [&](const char* key) {
-    return config::ConfigSection(in.config.ldv[key], in.config.config_path, std::string("ldv.") + key + ".");
-  };
-  std::optional<input::ImuTable> imu_table;
-  std::optional<input::GnssTable> gnss_table;
-  if (a.imu.empty() && a.imu_csv.empty() && has_ldv_key(in.config, "imu_table")) {
-    imu_table = input::ImuTable::from(table_section("imu_table"), in.config.config_path);
-    in.config.imu_path = imu_table->path;
+  // The files, as the configuration names them and the command line overrides them (the one reading of them).
+  input::SourceArgs sources;
+  sources.imu = a.imu, sources.imu_csv = a.imu_csv, sources.imu_tag = a.imu_tag;
+  sources.gnss = a.gnss, sources.rtklib_pos = a.rtklib_pos;
+  sources.csv_axes = a.csv_axes;
+  sources.calibration = a.calibration;
+  sources.pos_height_offset_m = height_offset_m;
+  sources.float_std_min_m = float_std_min_m;
+  sources.imu_time_shift_s = imu_time_shift_s;
+  sources.imu_layout_declared = !a.config.empty();
+  input::DriveSources read = input::read_drive_sources(sources, in.config);
+  in.imu = std::move(read.imu);
+  in.gnss = std::move(read.gnss);
+  in.imu_gaps = std::move(read.imu_gaps);
+  in.file_counts = std::move(read.counts);
+  in.imu_note = read.imu_note;
+  in.gnss_note = read.gnss_note;
+  in.description = read.description;
+  in.gps_week = read.gps_week;
+  // The tags' jitter from the rows themselves, where the reader knows them: measured here or not at all (the run
+  // would read the reads' scatter in the increments, not the samples').
+  if (read.tags.known && in.options.imu_stamp_jitter_from_tags) {
+    in.imu_stamp_jitter =
+        est::measure_imu_stamp_jitter(read.tags.distinct_sample_tags_s, read.tags.rows, read.tags.repeated_rows);
+    if (in.imu_stamp_jitter.found) in.options.imu_stamp_jitter_s = in.imu_stamp_jitter.sigma_s;
+    in.options.imu_stamp_jitter_from_tags = false;
   }
-  if (a.gnss.empty() && a.rtklib_pos.empty() && has_ldv_key(in.config, "gnss_table")) {
-    gnss_table = input::GnssTable::from(table_section("gnss_table"), in.config.config_path);
-    in.config.gnss_path = gnss_table->path;
-  }
-
-  const std::string& imu_path = in.config.imu_path;
-  if (imu_path.empty()) throw InputError("ldv", 0, "give --kfgins-config FILE, or --imu FILE (or --imu-csv FILE)");
-  // Loaded before the IMU file so a bad calibration is reported before a long read.
-  const std::string cal_path = calibration_path(a, in.config);
-  std::optional<calib::ImuCalibration> cal;
-  if (!cal_path.empty()) cal = calib::load_calibration(cal_path);
-  const auto calibrate = [&] {
-    if (cal)
-      for (ImuIncrement& s : in.imu) s = calib::apply_calibration(*cal, s);
-  };
-  if (imu_table) {
-    input::ImuTableReport rep;
-    in.imu = input::read_imu_table(*imu_table, &rep);
-    in.file_counts.push_back({"IMU", imu_path, static_cast<long>(in.imu.size()), rep.dropped});
-    in.imu_gaps = rep.long_gaps;
-    calibrate();  // the table's rows are in front-right-down already
-    in.imu_note = "ldv.imu_table: " + rep.layout.describe() + "; time " + imu_table->time.describe() + "; " +
-                  std::to_string(rep.long_gaps.size()) + " gaps";
-  } else if (!a.imu_csv.empty() || ends_with(imu_path, ".csv")) {
-    check_axes(a.csv_axes);
-    TaggedImuCsvReport rep;
-    in.imu = read_tagged_imu_csv(imu_path, a.imu_tag.empty() ? imu_path + ".tag" : a.imu_tag, {}, &rep);
-    in.file_counts.push_back({"IMU", imu_path, rep.samples, rep.dropped});
-    in.imu_gaps = rep.long_gaps;
-    // The tags' jitter from the rows themselves: the trapezoid's increments no longer show which rows repeated.
-    // Measured here or not at all: the run would read the reads' scatter in the increments, not the samples'.
-    if (in.options.imu_stamp_jitter_from_tags) {
-      in.imu_stamp_jitter = est::measure_imu_stamp_jitter(rep.distinct_sample_tags_s, rep.samples, rep.repeated_rows);
-      if (in.imu_stamp_jitter.found) in.options.imu_stamp_jitter_s = in.imu_stamp_jitter.sigma_s;
-      in.options.imu_stamp_jitter_from_tags = false;
-    }
-    calibrate();  // in the device axes, as `ldv calib static` saw them
-    for (ImuIncrement& s : in.imu) {
-      s.dtheta_b_rad = device_to_frd(s.dtheta_b_rad, a.csv_axes);
-      s.dvel_b_mps = device_to_frd(s.dvel_b_mps, a.csv_axes);
-    }
-    in.imu_note = std::to_string(rep.skipped_lines) + " malformed lines and " + std::to_string(rep.skipped_counter) +
-                  " bad counters skipped, " + std::to_string(rep.gaps) + " gaps; counter rate from " + rep.rate_source +
-                  "; tag positions count line ends " + rep.line_ends;
-    if (rep.counter_wraps > 0)
-      in.imu_note += "; " + std::to_string(rep.counter_wraps) + " counter wraps at " + std::to_string(rep.counter_bits) +
-                     " bits unwrapped";
-  } else {
-    ImuReadReport rep;
-    ImuReadOptions ro;
-    if (!a.config.empty()) {  // the configuration declares the layout (KF-GINS imudatalen, imudatarate)
-      ro.columns = in.config.imu_data_columns;
-      ro.rate_hz = in.config.imu_rate_hz;
-      ro.declared_by = "imudatalen in " + a.config;
-    } else {
-      ro.declared_by = "the KF-GINS layout; a config's imudatalen";
-    }
-    in.imu = read_kfgins_imu(imu_path, &rep, ro);
-    in.file_counts.push_back({"IMU", imu_path, rep.rows, rep.dropped});
-    in.imu_gaps = rep.long_gaps;
-    calibrate();
-    in.imu_note = std::to_string(rep.dropped.total()) + " records dropped, " + std::to_string(rep.gaps) + " gaps";
-  }
-  if (cal) {
-    in.imu_note += "; calibration " + cal_path + " applied";
-    const std::string priors = take_priors_from(*cal, in.config, in.options);
+  if (read.calibration) {
+    const std::string priors = take_priors_from(*read.calibration, in.config, in.options);
     if (!priors.empty()) in.imu_note += " (its sigmas are the prior std of " + priors + ")";
   }
-  for (ImuIncrement& s : in.imu) s.t_s += imu_time_shift_s;
-  in.description = imu_path;
-
-  const std::string& gnss_path = in.config.gnss_path;
-  if (gnss_path.empty()) throw InputError("ldv", 0, "give --kfgins-config FILE, or --gnss FILE (or --pos FILE)");
-  if (gnss_table) {
-    input::GnssTableReport rep;
-    in.gnss = input::read_gnss_table(*gnss_table, &rep);
-    in.file_counts.push_back({"GNSS", gnss_path, static_cast<long>(in.gnss.size()), rep.dropped});
-    in.gnss_note = "ldv.gnss_table: " + rep.layout.describe() + "; " + std::to_string(rep.repeated_rows) +
-                   " sample-and-hold rows dropped (each repeats the fix before it)";
-  } else if (!a.rtklib_pos.empty() || ends_with(gnss_path, ".pos")) {
-    gnss::RtklibReadReport rep;
-    const auto sols = gnss::read_rtklib_pos(gnss_path, {}, &rep);
-    if (sols.empty()) throw InputError(gnss_path, 0, "no solutions in the RTKLIB .pos file");
-    const PosTimeOrder order = in_time_order(sols, in.gps_week);
-    for (const gnss::GnssSolution* s : order.solutions) {
-      GnssFix f = s->fix;
-      f.t_s = continuous_seconds(s->time, in.gps_week);
-      f.pos.h_m += height_offset_m;
-      if (f.quality != GnssQuality::kFixed && float_std_min_m > 0) f.pos_std_ned_m = f.pos_std_ned_m.cwiseMax(float_std_min_m);
-      in.gnss.push_back(f);
-    }
-    DroppedRecords pos_dropped;  // the reader's malformed lines by reason, then the ordering's repeats
-    for (const auto& [why, count] : rep.malformed_by_reason) {
-      const auto first = rep.first_line_by_reason.find(why);
-      const long line = first != rep.first_line_by_reason.end() ? first->second : 0;
-      for (long k = 0; k < count; ++k) pos_dropped.add(DropReason::kMalformed, gnss_path, line, why);
-    }
-    for (long k = 0; k < order.repeated; ++k) pos_dropped.add(DropReason::kRepeated, gnss_path, 0, "repeated epoch");
-    in.file_counts.push_back({"GNSS", gnss_path, static_cast<long>(in.gnss.size()), pos_dropped});
-    in.gnss_note = rep.summary() + "; " + std::to_string(order.repeated) + " repeated epochs dropped, " +
-                   std::to_string(order.out_of_order) + " out of file order";
-  } else {
-    GnssReadReport rep;
-    in.gnss = read_kfgins_gnss(gnss_path, &rep);
-    in.file_counts.push_back({"GNSS", gnss_path, rep.rows, rep.dropped});
-  }
-  in.description += " + " + gnss_path;
   load_odometer(a, in);
   // IMU stamps late against GNSS time: found from the data and taken out before the filter sees them, unless the
   // user set the shift or asked for KF-GINS's behaviour.

@@ -30,6 +30,7 @@
 #include "estimator/calibrate/imu_stamp_jitter.hpp"
 #include "estimator/options.hpp"
 #include "estimator/update/observation.hpp"
+#include "input/drive_sources.hpp"
 
 namespace ldv::assess {
 
@@ -67,16 +68,7 @@ struct NavInputArgs {
 };
 
 // What the readers kept and dropped of one input file (printed by `ldv nav`).
-struct InputFileCounts {
-  std::string role;  // "IMU" or "GNSS"
-  std::string path;
-  long kept = 0;
-  DroppedRecords dropped;
-  double dropped_fraction() const {
-    const long n = kept + dropped.total();
-    return n > 0 ? static_cast<double>(dropped.total()) / static_cast<double>(n) : 0.0;
-  }
-};
+using InputFileCounts = input::SourceCounts;
 
 constexpr double kMaxDroppedFraction = 0.02;  // more is worth a warning (and an error with --strict)
 constexpr double kMaxImuGap_s = 1.0;          // an IMU hole longer than this is worth a warning
