@@ -6,6 +6,7 @@
 #include "common/formats/kfgins_config.hpp"
 #include "common/geo/earth_model.hpp"
 #include "common/io/input_error.hpp"
+#include "input/tables/row_checks.hpp"
 
 namespace ldv::input {
 namespace {
@@ -69,12 +70,7 @@ std::vector<GnssFix> read_gnss_table(const GnssTable& table, GnssTableReport* re
   for_each_table_row(table.path, layout, [&](long line, const std::vector<std::string_view>& fields) {
     ++index;
     ++rep.rows;
-    if (static_cast<int>(fields.size()) != layout.columns) {
-      rep.dropped.add(
-          DropReason::kWrongColumns, table.path, line,
-          "expected " + std::to_string(layout.columns) + " columns, found " + std::to_string(fields.size()));
-      return;
-    }
+    if (!row_has_layout_columns(fields, layout, table.path, line, rep.dropped)) return;
     double t = 0.0, q = 0.0;
     Vec3 raw, s = table.stated_std_ned_m;
     bool numbers = clock.time_of(index, fields, t) && (quality < 0 || parse_table_number(fields[quality], layout, q));
@@ -93,11 +89,7 @@ std::vector<GnssFix> read_gnss_table(const GnssTable& table, GnssTableReport* re
       ++rep.repeated_rows;
       return;
     }
-    if (std::isfinite(t_prev) && !(t > t_prev)) {
-      rep.dropped.add(t == t_prev ? DropReason::kRepeated : DropReason::kTimeBackwards, table.path, line,
-                      "time " + std::to_string(t) + " s does not follow " + std::to_string(t_prev) + " s");
-      return;
-    }
+    if (!time_follows(t, t_prev, table.path, line, rep.dropped)) return;
     GnssFix f;
     f.t_s = t;
     if (table.ecef) {

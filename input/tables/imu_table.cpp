@@ -7,6 +7,7 @@
 #include "common/geo/earth_model.hpp"
 #include "common/io/input_error.hpp"
 #include "common/math/device_axes.hpp"
+#include "input/tables/row_checks.hpp"
 
 namespace ldv::input {
 namespace {
@@ -66,12 +67,7 @@ std::vector<ImuIncrement> read_imu_table(const ImuTable& table, ImuTableReport* 
   for_each_table_row(table.path, layout, [&](long line, const std::vector<std::string_view>& fields) {
     ++index;
     ++rep.rows;
-    if (static_cast<int>(fields.size()) != layout.columns) {
-      rep.dropped.add(
-          DropReason::kWrongColumns, table.path, line,
-          "expected " + std::to_string(layout.columns) + " columns, found " + std::to_string(fields.size()));
-      return;
-    }
+    if (!row_has_layout_columns(fields, layout, table.path, line, rep.dropped)) return;
     double t = 0.0;
     Vec3 w, f;
     bool numbers = clock.time_of(index, fields, t);
@@ -83,11 +79,7 @@ std::vector<ImuIncrement> read_imu_table(const ImuTable& table, ImuTableReport* 
     }
     w = device_to_frd(w * table.gyro_to_si, table.axes);
     f = device_to_frd(f * table.accel_to_si, table.axes);
-    if (std::isfinite(t_prev) && !(t > t_prev)) {
-      rep.dropped.add(t == t_prev ? DropReason::kRepeated : DropReason::kTimeBackwards, table.path, line,
-                      "time " + std::to_string(t) + " s does not follow " + std::to_string(t_prev) + " s");
-      return;
-    }
+    if (!time_follows(t, t_prev, table.path, line, rep.dropped)) return;
     if (std::isfinite(t_prev)) {
       ImuIncrement inc;
       inc.t_s = t;
