@@ -60,7 +60,7 @@ constexpr double kLagNoiseGain = 0.7;
 // 99.9 % allows (-2 ln L falls by 10.8): under vibration both runs need the vibration's noise and the noise test
 // cannot tell (a 3DM-GX2 at 10x: 69.5x with the 77 ms lag, 70.2x without), while the likelihood can (-2 ln L
 // 66 lower with it; a 1.2 m forward lever arm taken for 138 ms: 162 higher).
-constexpr double kLagLikelihoodGain = 10.83;
+constexpr double kLagLikelihoodGain = DriveImuLatency::kLikelihoodTest;
 
 // -2 ln L of the GNSS positions as a function of a shift of the IMU stamps: sum over the fixes of NIS + ln det S
 // (positions only, an outlier counted as at the filter's gate), each pass with the IMU shifted exactly and the IMU
@@ -285,7 +285,6 @@ void decide(const Drive& in) {
       in.decision.applied = true;
     }
     in.decision.lever_explains = lever_explains;
-    in.decision.likelihood_gain = fall;
     char why[160];
     if (e.sigma_s >= ImuLatencyEstimate::kMaxSigma_s)
       std::snprintf(why, sizeof why, "known by the turns to %.0f ms only", 1e3 * e.sigma_s);
@@ -295,7 +294,8 @@ void decide(const Drive& in) {
     else
       std::snprintf(why, sizeof why, "only %.1f of the turns' sigmas", std::abs(e.lag_s) / e.sigma_s);
     // A lag the fixes refute (the real walk: the turns' 406 ms raises -2 ln L by 5800, the pass loses the track).
-    const bool refuted = fall < -kLagLikelihoodGain;
+    in.decision.likelihood_gain = fall;
+    const bool refuted = in.decision.refuted();
     char likelihood_said[96] = "the fixes' likelihood could not be compared (a pass failed)";
     if (refuted)
       std::snprintf(likelihood_said, sizeof likelihood_said, "-2 ln L of the fixes rises by %.1f with it: not a lag",

@@ -24,6 +24,10 @@ struct DriveImuLatency {
   // Where the filter judged the turns' lag over the whole file: -2 ln L of the GNSS positions without it minus with
   // it (positive: the lag fits better), NaN where it was not judged.
   double likelihood_gain = NAN;
+  // The 1-parameter likelihood-ratio test at 99.9 %: -2 ln L must move by more than this to take a side.
+  static constexpr double kLikelihoodTest = 10.83;
+  // The fixes refute the turns' lag (its pass raises -2 ln L beyond the test: the real walk's 406 ms).
+  bool refuted() const { return likelihood_gain < -kLikelihoodTest; }
   // The latency after the GNSS likelihood over further IMU shifts refined a lag taken out.
   struct Refined {
     bool done = false;

@@ -145,7 +145,7 @@ void run_diagnose(const DiagnoseArgs& a) {
   if (loaded.latency.turns.valid) {
     diag::SelfCalibration c;
     c.name = "time_offset";
-    // The filter pass's refinement where there was one (nav_inputs.cpp refine_latency_with_filter).
+    // The filter pass's refinement where there was one (estimator/calibrate/drive_imu_latency.cpp).
     const bool refined = loaded.latency.refined.done;
     const double lag_s = refined ? loaded.latency.refined.lag_s : loaded.latency.turns.lag_s;
     const double sigma_s = refined ? loaded.latency.refined.sigma_s : loaded.latency.turns.sigma_s;
@@ -154,18 +154,28 @@ void run_diagnose(const DiagnoseArgs& a) {
     c.unit = "ms";
     c.print_scale = 1e3;
     c.applied = loaded.latency.applied;
+    // The fixes refute a lag whose pass raises -2 ln L beyond the 1-parameter test (the real walk: the turns' 406
+    // ms, a hand-held unit's heading leading the walker's course).
+    char refuted[160] = "";
+    if (loaded.latency.refuted())
+      std::snprintf(refuted, sizeof refuted,
+                    "not taken out: the GNSS positions fit worse with it (-2 ln L %.1f higher): not a lag of the "
+                    "stamps",
+                    -loaded.latency.likelihood_gain);
     char b[320];
     std::snprintf(b, sizeof b,
                   "IMU stamps late by %.1f +- %.1f ms (the turns' heading changes against the GNSS track); %s",
                   1e3 * lag_s, 1e3 * sigma_s,
                   c.applied                       ? "taken out of the stamps before the diagnosis"
+                  : *refuted                      ? refuted
                   : loaded.latency.lever_explains ? "not taken out: a forward lever arm explains the fixes as "
                                                     "well or better (the screening below weighs both)"
                                                   : "not taken out (not significant)");
     c.note = b;
     d.self_calibration.insert(d.self_calibration.begin(), c);
   }
-  // Whether the GNSS velocities were fused is the system's own decision too (nav_inputs.cpp): the misfit it rested on.
+  // Whether the GNSS velocities were fused is the system's own decision too (toolbox/assess/nav_inputs.cpp): the misfit
+  // it rested on.
   if (loaded.gnss_velocity_check) {
     const est::GnssVelocityCheck& v = *loaded.gnss_velocity_check;
     diag::SelfCalibration c;
