@@ -103,6 +103,11 @@ std::vector<GnssFix> read_gnss_table(const GnssTable& table, GnssTableReport* re
       f.pos = Geodetic{raw(0) * kDegToRad, wrap_pi(raw(1) * kDegToRad), raw(2)};
     }
     f.pos.h_m += table.height_offset_m;
+    if (!std::isfinite(f.pos.lat_rad) || !std::isfinite(f.pos.lon_rad) || !std::isfinite(f.pos.h_m) ||
+        std::abs(f.pos.lat_rad) > 0.5 * M_PI) {
+      rep.dropped.add(DropReason::kOutOfRange, table.path, line, "a position beyond the Earth's coordinates");
+      return;
+    }
     if (!(s.minCoeff() > 0.0)) {
       rep.dropped.add(DropReason::kOutOfRange, table.path, line, "a std is not positive");
       return;

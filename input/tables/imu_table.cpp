@@ -87,6 +87,10 @@ std::vector<ImuIncrement> read_imu_table(const ImuTable& table, ImuTableReport* 
       const double half = table.interval_mean ? 0.0 : 0.5;  // the trapezoid's weight on the row before
       inc.dtheta_b_rad = table.gyro_increments ? w : ((1.0 - half) * w + half * w_prev) * inc.dt_s;
       inc.dvel_b_mps = table.accel_increments ? f : ((1.0 - half) * f + half * f_prev) * inc.dt_s;
+      if (!std::isfinite(inc.dt_s) || !inc.dtheta_b_rad.allFinite() || !inc.dvel_b_mps.allFinite()) {
+        rep.dropped.add(DropReason::kOutOfRange, table.path, line, "an increment beyond any number (time or rate)");
+        return;
+      }
       out.push_back(inc);
       lines.push_back(line);
     }
