@@ -116,10 +116,16 @@ DriveSources read_drive_sources(const SourceArgs& a, KfGinsConfig& cfg) {
   };
   if (imu_table) {
     ImuTableReport rep;
-    out.imu = read_imu_table(*imu_table, &rep);
+    ImuTable device_axes = *imu_table;  // read in the device axes: a calibration is in them
+    device_axes.axes = {1, 2, 3};
+    out.imu = read_imu_table(device_axes, &rep);
     out.counts.push_back({"IMU", imu_path, static_cast<long>(out.imu.size()), rep.dropped});
     out.imu_gaps = rep.long_gaps;
-    calibrate();  // the table's rows are in front-right-down already
+    calibrate();  // in the device axes, as `ldv calib static` saw them
+    for (ImuIncrement& s : out.imu) {
+      s.dtheta_b_rad = device_to_frd(s.dtheta_b_rad, imu_table->axes);
+      s.dvel_b_mps = device_to_frd(s.dvel_b_mps, imu_table->axes);
+    }
     out.imu_note = "ldv.imu_table: " + rep.layout.describe() + "; time " + imu_table->time.describe() + "; " +
                    std::to_string(rep.long_gaps.size()) + " gaps";
   } else if (!a.imu_csv.empty() || ends_with(imu_path, ".csv")) {

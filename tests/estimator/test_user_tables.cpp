@@ -12,9 +12,11 @@
 #include <fstream>
 #include <string>
 
+#include "common/formats/imu_calibration.hpp"
 #include "common/formats/kfgins_config.hpp"
 #include "common/formats/kfgins_files.hpp"
 #include "common/geo/earth_model.hpp"
+#include "input/drive_sources.hpp"
 #include "sim/simulator.hpp"
 #include "toolbox/assess/nav_inputs.hpp"
 
@@ -213,6 +215,46 @@ TEST(UserTables, GivenAWrongDescription_ThenTheErrorNamesTheFileLineAndKey) {
             std::string::npos)
       << column;
   EXPECT_EQ(error_of(imu_ok, gnss_ok).find("ldv.imu_table"), std::string::npos) << "a right description is read";
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace ldv::est
+
+namespace ldv::est {
+namespace {
+
+// A calibration from `ldv calib static` is in the device's axes: a table in other axes is calibrated before its axes
+// are turned to front-right-down (as the tagged CSV is). A front-left-up device at rest, level, whose y accelerometer
+// reads 0.05 g of bias: with the calibration the increments hold gravity alone, in front-right-down.
+TEST(UserTables, GivenATableInOtherAxesAndACalibration_ThenItIsAppliedInTheDeviceAxes) {
+  const fs::path dir = fs::temp_directory_path() / ("ldv_user_tables_cal_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  {
+    std::ofstream csv(dir / "still.csv");
+    csv << "t,gx,gy,gz,ax,ay,az\n";
+    for (int k = 0; k < 200; ++k) csv << 0.01 * k << ",0,0,0,0,0.05,1\n";  // up is +z: f = +g; y biased
+  }
+  calib::ImuCalibration cal;
+  cal.accel.bias = Vec3(0.0, 0.05 * earth::kStandardGravity_mps2, 0.0);  // device axes
+  calib::save_calibration((dir / "cal.yaml").string(), cal);
+  std::ofstream(dir / "c.yaml") << "gnsspath: gnss.txt\n"
+                                << "imunoise:\n  arw: [1, 1, 1]\n  vrw: [1, 1, 1]\n  gbstd: [10, 10, 10]\n"
+                                << "  abstd: [100, 100, 100]\n  gsstd: [0, 0, 0]\n  asstd: [0, 0, 0]\n  corrtime: 1\n"
+                                << "ldv:\n  calibration: cal.yaml\n  imu_table:\n    path: still.csv\n"
+                                << "    time: {column: t}\n    gyro: {columns: [gx, gy, gz], unit: deg/s}\n"
+                                << "    accel: {columns: [ax, ay, az], unit: g}\n    axes: [1, -2, -3]\n";
+  std::ofstream(dir / "gnss.txt") << "0.0 40.0 -105.0 1600.0 0.02 0.02 0.04\n1.0 40.0 -105.0 1600.0 0.02 0.02 0.04\n";
+  KfGinsConfig cfg = load_kfgins_config((dir / "c.yaml").string());
+  const input::DriveSources read = input::read_drive_sources(input::SourceArgs{}, cfg);
+  ASSERT_FALSE(read.imu.empty());
+  ASSERT_TRUE(read.calibration.has_value());
+  const ImuIncrement& s = read.imu.back();
+  const Vec3 f_frd = s.dvel_b_mps / s.dt_s;
+  std::printf("[ info ] specific force in front-right-down: %.4f %.4f %.4f m/s^2\n", f_frd.x(), f_frd.y(), f_frd.z());
+  EXPECT_NEAR(f_frd.x(), 0.0, 1e-9);
+  EXPECT_NEAR(f_frd.y(), 0.0, 1e-9) << "the bias taken out on the device's y, before y became -right";
+  EXPECT_NEAR(f_frd.z(), -earth::kStandardGravity_mps2, 1e-9);  // up in front-right-down
   fs::remove_all(dir);
 }
 

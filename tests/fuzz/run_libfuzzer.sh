@@ -11,7 +11,7 @@
 # submission's run is the one its author ran: a finding is the code's, not the luck of the draw.
 set -euo pipefail
 src="$1" build="$2" seconds="${3:-30}" merge="${4:-}"
-declare -A ci_runs=([fuzz_kfgins_text]=30000 [fuzz_rtklib_files]=17000 [fuzz_user_tables]=30000 [fuzz_gnss_stream]=80000
+declare -A ci_runs=([fuzz_kfgins_text]=30000 [fuzz_rtklib_files]=17000 [fuzz_user_tables]=15000 [fuzz_gnss_stream]=80000
   [fuzz_imu_device]=150000 [fuzz_lcm_log]=60000 [fuzz_yaml_configs]=25000 [fuzz_bus_gate]=120)
 if ! command -v clang++ >/dev/null || ! ls /usr/lib/llvm-*/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a >/dev/null 2>&1; then
   export DEBIAN_FRONTEND=noninteractive
