@@ -1,6 +1,7 @@
 #include "estimator/run/run_navigation.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <optional>
 #include <string>
@@ -267,7 +268,9 @@ RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vecto
   SessionOptions so = session_options_from(cfg, filter.options(), alignment);
   so.imu_noise_floor = noise_floor;
   so.standstill_f_scatter_mps2 = standstill_f_scatter_mps2;
+  double last_epoch_s = NAN;  // the last solution epoch (a run re-aligning at its end has none after it)
   NavSession session(so, filter, [&](const NavFilter& f, int) {
+    last_epoch_s = f.state().t_s;
     if (cb.on_innovation)
       for (const auto& r : filter.take_innovations()) cb.on_innovation(r);
     else if (filter.innovations().size() > 4096)
@@ -302,7 +305,7 @@ RunSummary run_navigation(const std::vector<ImuIncrement>& imu, const std::vecto
   sum.gyro_bias_seed_std_rad_s = session.gyro_bias_seed_std_rad_s();
   sum.imu_noise_floor = session.imu_noise_floor();
   sum.t_start_s = session.started_at_s();
-  sum.t_end_s = filter.state().t_s;
+  sum.t_end_s = std::isfinite(last_epoch_s) ? last_epoch_s : filter.state().t_s;
   sum.faults = filter.faults();
   sum.imu_noise_scale_end = filter.imu_noise_scale();
   sum.final_status = filter.status();

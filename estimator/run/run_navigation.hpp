@@ -49,7 +49,7 @@ struct RunCallbacks {
 
 struct RunSummary {
   long imu_samples = 0, gnss_fixes = 0, other_observations = 0;
-  double t_start_s = 0.0, t_end_s = 0.0;
+  double t_start_s = 0.0, t_end_s = 0.0;  // the first and last solution epochs
   std::string initialisation;  // "given", or the alignment method
   Vec3 gyro_bias_seed_rad_s = Vec3::Zero();  // turn-on bias from the static start, taken out (alignment.hpp)
   Vec3 gyro_bias_seed_std_rad_s = Vec3::Zero();  // its 1-sigma (0: not measured, e.g. a warm start's saved bias)

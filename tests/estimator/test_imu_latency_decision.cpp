@@ -11,6 +11,8 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "estimator/filter/nav_filter.hpp"
+#include "estimator/run/run_navigation.hpp"
 #include "sim/simulator.hpp"
 #include "tests/estimator/walk_datasheet_config.hpp"
 #include "toolbox/assess/nav_inputs.hpp"
@@ -190,6 +192,33 @@ TEST(ImuLatencyDecision, GivenTheRealWalkWhoseTurnsReadALagTheFixesRefute_ThenTh
   EXPECT_LT(in.latency.likelihood_gain, -100.0) << in.imu_note;  // refuted beyond any test's threshold
   EXPECT_FALSE(in.latency.applied) << in.imu_note;
   EXPECT_EQ(in.imu_note.find("could not be compared"), std::string::npos) << in.imu_note;
+}
+
+}  // namespace
+}  // namespace ldv::est
+
+namespace ldv::est {
+namespace {
+
+// A run that ends re-aligning (the walk with the turns' refuted 406 ms taken out: its filter leaves the fixes, aligns
+// again, and the walker stops before the alignment completes) reports the span its solution covers: `ldv nav` printed
+// "IMU samples from 408652.500 to 0.000 s" (the restarted filter's empty state).
+TEST(ImuLatencyDecision, GivenARunThatEndsAligningAgain_ThenItsSummaryEndsAtItsLastSolution) {
+  const std::filesystem::path config = test::write_walk_datasheet_config("realign");
+  assess::NavInputArgs a;
+  a.config = config.string();
+  a.imu_time_shift_s = -0.406;
+  const assess::NavInputs in = assess::load_nav_inputs(a);
+  std::filesystem::remove(config);
+  NavFilter f(in.options);
+  double last_epoch_s = NAN;
+  RunCallbacks cb;
+  cb.on_epoch = [&](const NavFilter& e) { last_epoch_s = e.state().t_s; };
+  const RunSummary sum = run_navigation(in.imu, in.gnss, in.config, f, cb);
+  std::printf("[ info ] solution from %.3f to %.3f s; IMU to %.3f s\n", sum.t_start_s, sum.t_end_s, in.imu.back().t_s);
+  ASSERT_TRUE(std::isfinite(last_epoch_s));
+  EXPECT_DOUBLE_EQ(sum.t_end_s, last_epoch_s);
+  EXPECT_GT(sum.t_end_s, sum.t_start_s);
 }
 
 }  // namespace
