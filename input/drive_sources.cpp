@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "common/config/config_section.hpp"
 #include "common/formats/kfgins_files.hpp"
@@ -19,6 +20,14 @@ namespace {
 void check_axes(const std::vector<int>& axes) {
   if (!is_device_axes(axes))
     throw InputError("--csv-axes", 0, "expected a permutation of 1 2 3 with signs, e.g. 1 -2 -3");
+}
+
+// Increments read in the device's axes (a calibration is in them) into front-right-down.
+void turn_to_frd(std::vector<ImuIncrement>& imu, const std::vector<int>& axes) {
+  for (ImuIncrement& s : imu) {
+    s.dtheta_b_rad = device_to_frd(s.dtheta_b_rad, axes);
+    s.dvel_b_mps = device_to_frd(s.dvel_b_mps, axes);
+  }
 }
 
 bool ends_with(const std::string& s, const char* suffix) {
@@ -122,10 +131,7 @@ DriveSources read_drive_sources(const SourceArgs& a, KfGinsConfig& cfg) {
     out.counts.push_back({"IMU", imu_path, static_cast<long>(out.imu.size()), rep.dropped});
     out.imu_gaps = rep.long_gaps;
     calibrate();  // in the device axes, as `ldv calib static` saw them
-    for (ImuIncrement& s : out.imu) {
-      s.dtheta_b_rad = device_to_frd(s.dtheta_b_rad, imu_table->axes);
-      s.dvel_b_mps = device_to_frd(s.dvel_b_mps, imu_table->axes);
-    }
+    turn_to_frd(out.imu, imu_table->axes);
     out.imu_note = "ldv.imu_table: " + rep.layout.describe() + "; time " + imu_table->time.describe() + "; " +
                    std::to_string(rep.long_gaps.size()) + " gaps";
   } else if (!a.imu_csv.empty() || ends_with(imu_path, ".csv")) {
@@ -135,12 +141,9 @@ DriveSources read_drive_sources(const SourceArgs& a, KfGinsConfig& cfg) {
     out.counts.push_back({"IMU", imu_path, rep.samples, rep.dropped});
     out.imu_gaps = rep.long_gaps;
     // The rows' own tags: the trapezoid's increments no longer show which rows repeated.
-    out.tags = {true, rep.distinct_sample_tags_s, rep.samples, rep.repeated_rows};
+    out.tags = {true, std::move(rep.distinct_sample_tags_s), rep.samples, rep.repeated_rows};
     calibrate();  // in the device axes, as `ldv calib static` saw them
-    for (ImuIncrement& s : out.imu) {
-      s.dtheta_b_rad = device_to_frd(s.dtheta_b_rad, a.csv_axes);
-      s.dvel_b_mps = device_to_frd(s.dvel_b_mps, a.csv_axes);
-    }
+    turn_to_frd(out.imu, a.csv_axes);
     out.imu_note = std::to_string(rep.skipped_lines) + " malformed lines and " + std::to_string(rep.skipped_counter) +
                    " bad counters skipped, " + std::to_string(rep.gaps) + " gaps; counter rate from " +
                    rep.rate_source + "; tag positions count line ends " + rep.line_ends;

@@ -179,11 +179,7 @@ namespace {
 // comparison gave up. A fix a pass did not use now counts as an outlier at the gate: the lag is judged, and refuted.
 // (A hand-held unit's heading leads the walker's course over ground: the turns' lag is the walk's, not the IMU's.)
 TEST(ImuLatencyDecision, GivenTheRealWalkWhoseTurnsReadALagTheFixesRefute_ThenTheLikelihoodJudgesItAndNoLagIsTakenOut) {
-  const std::filesystem::path config = test::write_walk_datasheet_config("latency");
-  assess::NavInputArgs a;
-  a.config = config.string();
-  const assess::NavInputs in = assess::load_nav_inputs(a);
-  std::filesystem::remove(config);
+  const assess::NavInputs in = test::walk_datasheet_inputs("latency");
   ASSERT_TRUE(in.latency.turns.valid) << in.imu_note;
   ASSERT_GT(in.latency.turns.lag_s, 0.3) << "the turns' reading this test is about";
   std::printf("[ info ] the walk: turns %.1f +- %.1f ms, -2 ln L gain with the lag %.1f\n",
@@ -204,12 +200,7 @@ namespace {
 // again, and the walker stops before the alignment completes) reports the span its solution covers: `ldv nav` printed
 // "IMU samples from 408652.500 to 0.000 s" (the restarted filter's empty state).
 TEST(ImuLatencyDecision, GivenARunThatEndsAligningAgain_ThenItsSummaryEndsAtItsLastSolution) {
-  const std::filesystem::path config = test::write_walk_datasheet_config("realign");
-  assess::NavInputArgs a;
-  a.config = config.string();
-  a.imu_time_shift_s = -0.406;
-  const assess::NavInputs in = assess::load_nav_inputs(a);
-  std::filesystem::remove(config);
+  const assess::NavInputs in = test::walk_datasheet_inputs("realign", -0.406);
   NavFilter f(in.options);
   double last_epoch_s = NAN;
   RunCallbacks cb;

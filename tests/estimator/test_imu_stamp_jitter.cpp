@@ -100,11 +100,7 @@ TEST(ImuStampJitter, GivenTooFewSamples_ThenNothingIsMeasured) {
 // the split noise adaptation no longer lets call every misfit IMU noise, rejects fewer than half the fixes it
 // rejected without (36 -> 15: what is left is the lever arm, lag and gyro misalignment ldv diagnose names).
 TEST(ImuStampJitter, GivenTheRealWalksHostTags_ThenTheirJitterIsMeasuredAndModelledAndFewerFixesAreRejected) {
-  const std::filesystem::path config = test::write_walk_datasheet_config("jitter");
-  assess::NavInputArgs a;
-  a.config = config.string();
-  const assess::NavInputs in = assess::load_nav_inputs(a);
-  std::filesystem::remove(config);
+  const assess::NavInputs in = test::walk_datasheet_inputs("jitter");
   ASSERT_TRUE(in.imu_stamp_jitter.noticeable());
   EXPECT_NEAR(in.imu_stamp_jitter.sigma_s, 1.99e-3, 0.1e-3);
   EXPECT_NEAR(1.0 / in.imu_stamp_jitter.sample_interval_s, 100.5, 0.5);

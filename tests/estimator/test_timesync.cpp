@@ -12,21 +12,12 @@
 
 #include "common/formats/kfgins_files.hpp"
 #include "sim/simulator.hpp"
+#include "tests/estimator/ldv_output.hpp"
 
 namespace ldv::est {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string timesync_output(const std::string& args) {
-  std::string text;
-  if (FILE* p = ::popen((std::string(LDV_BIN_DIR) + "/ldv timesync " + args + " 2>&1").c_str(), "r")) {
-    char buf[4096];
-    while (size_t n = std::fread(buf, 1, sizeof buf, p)) text.append(buf, n);
-    ::pclose(p);
-  }
-  return text;
-}
 
 TEST(Timesync, GivenAMemsImuOnItsOwnClockOffsetBy0p25And5p8Seconds_ThenTheOffsetIsFoundWithin3Sigma) {
   sim::SimRequest r;
@@ -43,7 +34,7 @@ TEST(Timesync, GivenAMemsImuOnItsOwnClockOffsetBy0p25And5p8Seconds_ThenTheOffset
     for (ImuIncrement& inc : late) inc.t_s -= offset_s;
     write_kfgins_imu((dir / "imu.txt").string(), late);
     const std::string out =
-        timesync_output("--imu " + (dir / "imu.txt").string() + " --gnss " + (dir / "gnss.txt").string());
+        test::ldv_output("timesync --imu " + (dir / "imu.txt").string() + " --gnss " + (dir / "gnss.txt").string());
     double found = NAN, sigma = NAN;
     const size_t at = out.find("\noffset_s ");
     ASSERT_NE(at, std::string::npos) << out;
@@ -68,7 +59,7 @@ TEST(Timesync, GivenNoTurnsToCompare_ThenItSaysWhatIsMissing) {
   write_kfgins_gnss((dir / "gnss.txt").string(), s.gnss, false);
   write_kfgins_imu((dir / "imu.txt").string(), s.imu);
   const std::string out =
-      timesync_output("--imu " + (dir / "imu.txt").string() + " --gnss " + (dir / "gnss.txt").string());
+      test::ldv_output("timesync --imu " + (dir / "imu.txt").string() + " --gnss " + (dir / "gnss.txt").string());
   EXPECT_EQ(out.find("\noffset_s "), std::string::npos) << out;
   EXPECT_NE(out.find("turning GNSS intervals"), std::string::npos) << out;
   fs::remove_all(dir);

@@ -18,23 +18,13 @@
 #include "common/geo/earth_model.hpp"
 #include "input/drive_sources.hpp"
 #include "sim/simulator.hpp"
+#include "tests/estimator/ldv_output.hpp"
 #include "toolbox/assess/nav_inputs.hpp"
 
 namespace ldv::est {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string output_of(const std::string& command) {
-  const std::string out = command + " 2>&1";
-  std::string text;
-  if (FILE* p = ::popen(out.c_str(), "r")) {
-    char buf[4096];
-    while (size_t n = std::fread(buf, 1, sizeof buf, p)) text.append(buf, n);
-    ::pclose(p);
-  }
-  return text;
-}
 
 double compare_json_number(const std::string& json, const std::string& component, const std::string& field) {
   const size_t c = json.find("\"" + component + "\"");
@@ -129,23 +119,23 @@ TEST(UserTables, GivenACarsPublishedCsvDescribedInTheConfiguration_ThenLdvNavMat
   sim::SimResult copy = s;
   sim::write_outputs(copy, (dir / "sim").string());  // truth.nav
 
-  const std::string ldv = std::string(LDV_BIN_DIR) + "/ldv", week = " --week " + std::to_string(r.gps_week);
-  const std::string log = output_of(ldv + " nav" + week + " --kfgins-config " + (dir / "table.yaml").string() +
-                                    " --out " + (dir / "table.nav").string());
+  const std::string week = " --week " + std::to_string(r.gps_week);
+  const std::string log = test::ldv_output("nav" + week + " --kfgins-config " + (dir / "table.yaml").string() +
+                                           " --out " + (dir / "table.nav").string());
   std::printf("%s\n", log.c_str());
-  output_of(ldv + " nav --quiet" + week + " --kfgins-config " + (dir / "hand.yaml").string() + " --out " +
-            (dir / "hand.nav").string());
+  test::ldv_output("nav --quiet" + week + " --kfgins-config " + (dir / "hand.yaml").string() + " --out " +
+                   (dir / "hand.nav").string());
   ASSERT_TRUE(fs::exists(dir / "table.nav")) << log;
   EXPECT_NE(log.find(std::to_string(hand_gnss.size()) + " records kept"), std::string::npos) << "every fix, once";
   EXPECT_NE(log.find("sample-and-hold rows dropped"), std::string::npos) << log;
   EXPECT_NE(log.find(std::to_string(blank_rows) + " dropped"), std::string::npos) << "the rows before the first fix";
 
   const std::string same =
-      output_of(ldv + " compare --json " + (dir / "table.nav").string() + " " + (dir / "hand.nav").string());
+      test::ldv_output("compare --json " + (dir / "table.nav").string() + " " + (dir / "hand.nav").string());
   const std::string truth_t =
-      output_of(ldv + " compare --json " + (dir / "table.nav").string() + " " + (dir / "sim/truth.nav").string());
+      test::ldv_output("compare --json " + (dir / "table.nav").string() + " " + (dir / "sim/truth.nav").string());
   const std::string truth_h =
-      output_of(ldv + " compare --json " + (dir / "hand.nav").string() + " " + (dir / "sim/truth.nav").string());
+      test::ldv_output("compare --json " + (dir / "hand.nav").string() + " " + (dir / "sim/truth.nav").string());
   for (const char* c : {"north", "east", "down"}) {
     const double diff = compare_json_number(same, c, "max_abs");
     const double table_rms = compare_json_number(truth_t, c, "rms"), hand_rms = compare_json_number(truth_h, c, "rms");

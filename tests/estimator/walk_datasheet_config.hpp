@@ -8,6 +8,8 @@
 #include <fstream>
 #include <string>
 
+#include "toolbox/assess/nav_inputs.hpp"
+
 namespace ldv::est::test {
 
 // Writes the configuration to a file of its own in the temp directory and returns its path (the caller removes it).
@@ -22,6 +24,18 @@ inline std::filesystem::path write_walk_datasheet_config(const std::string& name
                         << "  asstd: [1000, 1000, 1000]\n  corrtime: 1\nantlever: [0, 0, 0]\n"
                         << "ldv:\n  pos_height_offset_m: 21.387\n";
   return config;
+}
+
+// The walk as `ldv nav --kfgins-config` reads it from that configuration (imu_time_shift_s: --imu-time-shift).
+inline assess::NavInputs walk_datasheet_inputs(const std::string& name,
+                                               double imu_time_shift_s = assess::NavInputArgs::kUnset) {
+  const std::filesystem::path config = write_walk_datasheet_config(name);
+  assess::NavInputArgs a;
+  a.config = config.string();
+  a.imu_time_shift_s = imu_time_shift_s;
+  assess::NavInputs in = assess::load_nav_inputs(a);
+  std::filesystem::remove(config);
+  return in;
 }
 
 }  // namespace ldv::est::test

@@ -35,8 +35,8 @@ assess::NavInputs load(const std::string& config, const std::string& imu, const 
   a.config = config;
   a.imu_latency = "off";
   a.refine_latency_in_filter = false;
-  if (!imu.empty()) (has_suffix(imu, ".csv") ? a.imu_csv : a.imu) = imu;
-  if (!gnss.empty()) (has_suffix(gnss, ".pos") ? a.rtklib_pos : a.gnss) = gnss;
+  a.imu = imu;  // the reader goes by the name: a .csv is a tagged CSV, a .pos an RTKLIB file (input/drive_sources)
+  a.gnss = gnss;
   return assess::load_nav_inputs(a);
 }
 
