@@ -42,9 +42,9 @@ void Aligner::add_imu(const ImuIncrement& raw) {
     } else if (window_full && !stat) {
       moving_seen_ = true;
     } else {
-      add_static(raw);
       for (const ImuIncrement& held : held_) add_static(held);  // the IMU stopped: it was a blip
       held_.clear();
+      add_static(raw);
     }
   }
   if (!levelled_ && (moving_seen_ || static_s_ >= o_.static_min_s)) level();
@@ -70,7 +70,7 @@ void Aligner::add_static(const ImuIncrement& raw) {
   second_dtheta_ += raw.dtheta_b_rad;
   second_dt_s_ += raw.dt_s;
   if (second_dt_s_ >= 1.0) {
-    second_rates_.push_back(second_dtheta_ / second_dt_s_);
+    static_seconds_.push_back({second_dtheta_ / second_dt_s_, raw.t_s});
     second_dtheta_.setZero();
     second_dt_s_ = 0.0;
   }
@@ -105,15 +105,44 @@ void Aligner::hold_until_gnss_says(const ImuIncrement& raw) {
   }
 }
 
+std::vector<Vec3> Aligner::rest_second_rates() const {
+  std::vector<Vec3> rates;
+  for (const StaticSecond& s : static_seconds_)
+    if (!rest_left_ || s.t_end_s <= rest_end_t_s_) rates.push_back(s.rate_rad_s);
+  return rates;
+}
+
+void Aligner::track_rest(const GnssFix& fix) {
+  if (rest_left_ || moving_seen_) return;
+  if (!rest_fix_) {
+    rest_fix_ = fix;
+    rest_end_t_s_ = fix.t_s;
+    return;
+  }
+  // Beyond 3 sigma of two fixes' difference (at least 10 cm: a stated std is often optimistic, and a car that
+  // pulls away covers it within a second); a single fix out is an outlier until the next one is out too.
+  const double sigma_h_m = std::hypot(fix.pos_std_ned_m.x(), fix.pos_std_ned_m.y());
+  const double out_m = std::max(0.1, 3.0 * std::sqrt(2.0) * sigma_h_m);
+  if (earth::ned_between(rest_fix_->pos, fix.pos).head<2>().norm() <= out_m) {
+    rest_end_t_s_ = fix.t_s;
+    rest_out_once_ = false;
+  } else if (rest_out_once_) {
+    rest_left_ = true;
+  } else {
+    rest_out_once_ = true;
+  }
+}
+
 std::vector<Vec3> Aligner::still_seconds() const {
   // A turn-on bias is constant; a turn on the spot (the GNSS shows no chord, the IMU's held samples are taken
   // for vibration) is a rate that comes and goes. Seconds whose mean rate leaves the median of all by more than
   // 4 robust sigma (1.4826 MAD, at least what the ARW makes of a second) on any axis were turning.
-  if (second_rates_.size() < 3) return second_rates_;
+  const std::vector<Vec3> rates = rest_second_rates();
+  if (rates.size() < 3) return rates;
   Vec3 median, spread;
   for (int axis = 0; axis < 3; ++axis) {
     std::vector<double> v;
-    for (const Vec3& r : second_rates_) v.push_back(r(axis));
+    for (const Vec3& r : rates) v.push_back(r(axis));
     const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
     std::nth_element(v.begin(), mid, v.end());
     median(axis) = *mid;
@@ -122,7 +151,7 @@ std::vector<Vec3> Aligner::still_seconds() const {
     spread(axis) = std::max(1.4826 * *mid, o_.arw_rad_per_sqrt_s);
   }
   std::vector<Vec3> still;
-  for (const Vec3& r : second_rates_)
+  for (const Vec3& r : rates)
     if (((r - median).cwiseAbs().array() <= 4.0 * spread.array()).all()) still.push_back(r);
   return still;
 }
@@ -131,14 +160,14 @@ void Aligner::seed_gyro_bias() {
   gyro_bias_seed_.reset();  // levelled again from a longer standstill: that one decides
   gyro_bias_seed_std_.setZero();
   const std::vector<Vec3> still = still_seconds();
+  // Less than static_min_s of rest (a drive that starts moving): the bias starts at zero with its prior.
+  if (static_cast<double>(still.size()) < o_.static_min_s) return;
   Vec3 sum = Vec3::Zero(), sum_sq = Vec3::Zero();
   for (const Vec3& r : still) sum += r, sum_sq += r.cwiseAbs2();
   const double n = static_cast<double>(still.size());
-  // The mean over the still seconds (the whole standstill, partial second included, below two of them).
-  const Vec3 mean_rate = still.size() >= 2 ? Vec3(sum / n) : Vec3(sum_dtheta_ / std::max(static_s_, 1e-9));
+  const Vec3 mean_rate = sum / n;
   if (mean_rate.norm() <= 10.0 * earth::kOmegaIe_rad_s) return;
   gyro_bias_seed_ = mean_rate;
-  if (still.size() < 2) return;  // no sigma from less than two seconds
   gyro_bias_seed_std_ = ((sum_sq / n - (sum / n).cwiseAbs2()).cwiseMax(0.0) / (n - 1.0)).cwiseSqrt();
 }
 
@@ -152,7 +181,7 @@ void Aligner::level() {
   // At rest the gyros read Earth rate plus their bias. Far above Earth rate the mean is the bias
   // (Earth rate's share, whatever the heading, stays under a tenth of it); a tactical gyro's mean is
   // Earth rate and stays in the data (gyrocompassing reads it).
-  if (static_s_ >= 1.0) seed_gyro_bias();
+  seed_gyro_bias();
   levelled_ = true;
   levelled_at_static_s_ = static_s_;
 }
@@ -170,6 +199,7 @@ void Aligner::add_gnss(const GnssFix& fix) {
   if (prev_fix_ && fix.t_s - prev_fix_->t_s > 0.0 && fix.t_s - prev_fix_->t_s <= 1.5)
     chord = earth::ned_between(prev_fix_->pos, fix.pos) / (fix.t_s - prev_fix_->t_s);
   const std::optional<Vec3> chord_before = prev_chord_mps_;
+  track_rest(fix);
   prev_fix_ = fix;
   prev_chord_mps_ = chord;
   last_fix_t_s_ = fix.t_s;
@@ -227,6 +257,8 @@ void Aligner::add_gnss(const GnssFix& fix) {
     sd.vel_n_mps = Vec3::Constant(std::max(v_std, 0.05) * 2.0);
     sd.att_rad = Vec3(level_std_rad_.x() + 0.5 * kDegToRad, level_std_rad_.y() + 0.5 * kDegToRad, o_.cog_yaw_std_rad);
     method_ = "levelling + GNSS course over ground";
+    if (rest_s() < o_.static_min_s)
+      method_ += "; no standstill at the start: the gyro bias starts at zero with its prior";
   }
   // The fix is at the antenna: move to the IMU, and carried from the IMU time the fix was taken at to this sample's
   // (a 60 ms IMU lag is 0.6 m along the track at 10 m/s).

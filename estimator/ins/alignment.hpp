@@ -9,7 +9,11 @@
 //     levelling by integrating the gyros in the meantime.
 // A gyro turn-on bias far above Earth rate (a MEMS IMU: tenths of a degree per second) shows as the
 // mean rate of the static start: it is taken out of the carried attitude and reported
-// (gyro_bias_seed), for the filter to take out of the increments too (set_input_gyro_bias).
+// (gyro_bias_seed), for the filter to take out of the increments too (set_input_gyro_bias). Only the seconds up to
+// the last fix the GNSS placed at the resting position feed it: a car creeping off in a slow turn reads like a bias
+// to the IMU (a 1 deg/s yaw fails the detector, and the held samples of an idling engine must count as rest) until
+// two chords call it motion, while its fixes leave the rest within a second. Without static_min_s of rest the bias
+// starts at zero with its prior, and the start says so.
 #include <deque>
 #include <optional>
 #include <string>
@@ -71,8 +75,10 @@ class Aligner {
   const NavState& state() const { return result_->first; }
   const NavStd& std() const { return result_->second; }
   const std::string& method() const { return method_; }
-  // The static start's mean rate when it is a turn-on bias (> 10 x Earth rate, from >= 1 s at rest).
+  // The static start's mean rate when it is a turn-on bias (> 10 x Earth rate, from >= static_min_s at rest).
   const std::optional<Vec3>& gyro_bias_seed() const { return gyro_bias_seed_; }
+  // Seconds of the static start up to the last fix at the resting position (the seed needs static_min_s of them).
+  double rest_s() const { return static_cast<double>(rest_second_rates().size()); }
   // Its 1-sigma per axis: the scatter of the seconds it was averaged over, over sqrt(their number). Seconds, not
   // samples: a sample's rate carries the angle quantization, which does not accumulate and averages out of the
   // mean; the scatter of 1 s means is the angle random walk's.
@@ -93,11 +99,22 @@ class Aligner {
   double t_s_ = 0.0;
   bool moving_seen_ = false;
   Vec3 sum_dv_ = Vec3::Zero(), sum_dtheta_ = Vec3::Zero();
-  // The gyro's mean rate over each second of the static window (the turn-on bias's sigma).
+  // The gyro's mean rate over each second of the static window (the turn-on bias and its sigma).
   Vec3 second_dtheta_ = Vec3::Zero();
   double second_dt_s_ = 0.0;
-  std::vector<Vec3> second_rates_;
-  std::vector<Vec3> still_seconds() const;  // second_rates_ without the seconds that turned
+  struct StaticSecond {
+    Vec3 rate_rad_s;
+    double t_end_s;
+  };
+  std::vector<StaticSecond> static_seconds_;
+  std::vector<Vec3> rest_second_rates() const;  // those before the GNSS showed the vehicle leave the rest
+  std::vector<Vec3> still_seconds() const;      // those without the seconds that turned
+  // Where the GNSS placed the rest: the first fix, and the last fix within the fixes' noise of it before two in a row
+  // left it (then rest_left_: the seconds after rest_end_t_s_ may have moved).
+  void track_rest(const GnssFix& fix);
+  std::optional<GnssFix> rest_fix_;
+  double rest_end_t_s_ = 0.0;
+  bool rest_out_once_ = false, rest_left_ = false;
   void seed_gyro_bias();  // at levelling: the static window's mean rate, when it is a turn-on bias
   double static_s_ = 0.0;
   bool levelled_ = false;

@@ -122,7 +122,11 @@ int main(int argc, char** argv) {
       }
     };
 
-    ldv::FusionInputGate gate({cfg.host_clock_imu, cfg.imu_max_ahead_s, cfg.gnss_max_ahead_s});
+    ldv::FusionInputOptions gate_options;
+    gate_options.host_clock_imu = cfg.host_clock_imu;
+    gate_options.imu_max_ahead_s = cfg.imu_max_ahead_s;
+    gate_options.gnss_max_ahead_s = cfg.gnss_max_ahead_s;
+    ldv::FusionInputGate gate(gate_options);
     long jumps_back_seen = 0;
     double last_refusal_s = -1e300;
     // Refused input is counted (heartbeat: malformed) and logged once per reason change, never fatal.

@@ -93,10 +93,11 @@ TEST(NavInputsPos, GivenOnlyZeroSigmas_ThenLoadingFailsNamingTheLineInsteadOfRej
 // Issue 35, item 15: one record dated 1980/01/06, or with a week of 99999999999 (an int overflow) or a year of
 // 2147483647, moved the reference week: 0 of 121 fixes used, a free-inertial run with exit 0.
 TEST(NavInputsPos, GivenOneRecordOfAnImpossibleDate_ThenItIsMalformedAndEveryOtherFixKeepsItsTime) {
-  for (const std::string bad : {std::string("1980/01/06 00:00:00.000 35.1 136.9 104.8 1 10 0.01 0.01 0.02 0 0 0 0.0 9.9\n"),
-                                std::string("99999999999 100.000 35.1 136.9 104.8 1 10 0.01 0.01 0.02 0 0 0 0.0 9.9\n"),
-                                std::string("2147483647/01/06 00:00:00.000 35.1 136.9 104.8 1 10 0.01 0.01 0.02 0 0 0 0.0 9.9\n"),
-                                std::string("0 100.000 35.1 136.9 104.8 1 10 0.01 0.01 0.02 0 0 0 0.0 9.9\n")}) {
+  for (const std::string& bad :
+       {std::string("1980/01/06 00:00:00.000 35.1 136.9 104.8 1 10 0.01 0.01 0.02 0 0 0 0.0 9.9\n"),
+        std::string("99999999999 100.000 35.1 136.9 104.8 1 10 0.01 0.01 0.02 0 0 0 0.0 9.9\n"),
+        std::string("2147483647/01/06 00:00:00.000 35.1 136.9 104.8 1 10 0.01 0.01 0.02 0 0 0 0.0 9.9\n"),
+        std::string("0 100.000 35.1 136.9 104.8 1 10 0.01 0.01 0.02 0 0 0 0.0 9.9\n")}) {
     std::string text;
     for (int k = 0; k < 121; ++k) text += k == 60 ? bad : pos_line(2300, 100.0 + k);
     const NavInputs in = load(text);

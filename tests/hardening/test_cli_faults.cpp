@@ -628,7 +628,9 @@ TEST(CliFaults, GivenATimeOffsetEstimateThatStepsBack_ThenTheNavTimesStillOnlyIn
   }
   EXPECT_GT(rows, 59000);
   EXPECT_EQ(back, 0) << "rows whose time did not increase";
-  if (rows < 60000) EXPECT_NE(r.output.find("epochs not written"), std::string::npos) << r.output;
+  if (rows < 60000) {
+    EXPECT_NE(r.output.find("epochs not written"), std::string::npos) << r.output;
+  }
 }
 }  // namespace
 }  // namespace ldv::test

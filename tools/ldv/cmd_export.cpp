@@ -104,8 +104,7 @@ void add_export_command(CLI::App& app) {
     std::stable_sort(gnss.begin(), gnss.end(), by_time);
     // Overlapping logs (or a message logged twice) hold an epoch more than once: one row each, counted and said
     // (issue 46: duplicate IMU samples went into imu.txt in silence).
-    constexpr double kSameEpoch_s = 1e-6;
-    const auto same_epoch = [](const auto& a, const auto& b) { return std::abs(a.t_s - b.t_s) < kSameEpoch_s; };
+    const auto same_epoch = [](const auto& a, const auto& b) { return std::abs(a.t_s - b.t_s) < 1e-6; };  // [s]
     const size_t imu_read = imu.size(), gnss_read = gnss.size();
     imu.erase(std::unique(imu.begin(), imu.end(), same_epoch), imu.end());
     gnss.erase(std::unique(gnss.begin(), gnss.end(), same_epoch), gnss.end());
