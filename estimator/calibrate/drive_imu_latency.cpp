@@ -244,6 +244,19 @@ void refine_latency_with_filter(const Drive& in) {
   in.decision.note += note;
 }
 
+bool model_has(const FilterOptions& o, const std::string& effect) {
+  const auto m = resolve_model(o.model, o.add, o.drop);
+  return std::find(m.begin(), m.end(), effect) != m.end();
+}
+
+// ImuLatencyEstimate::significant() stops at a 1.5 m lever arm (the live window has no filter passes to judge with);
+// a 3.5 m lever arm behind a MEMS IMU at 10 m/s read as the stamps 388 ms early, was taken out unasked, and ldv
+// diagnose then undid it with a time_offset.
+bool a_lever_arm_could_explain(const Drive& in, const ImuLatencyEstimate& e) {
+  return !model_has(in.options, "lever_arm") &&
+         std::abs(e.lag_s) * e.median_speed_mps <= largest_lever_arm_along_m(in.options);
+}
+
 void decide(const Drive& in) {
   if (in.imu.empty() || in.gnss.empty()) return;
   in.decision.turns = estimate_imu_latency(in.imu, in.gnss);
@@ -251,13 +264,14 @@ void decide(const Drive& in) {
   char note[768];
   if (!e.valid) {
     std::snprintf(note, sizeof note, "; IMU latency not estimated (%d turning GNSS intervals)", e.turning_intervals);
-  } else if (e.significant()) {
+  } else if (e.significant() && !a_lever_arm_could_explain(in, e)) {
     in.imu = shifted(in.imu, e.lag_s);
     in.decision.applied = true;
     std::snprintf(note, sizeof note, "; IMU stamps late by %.1f +- %.1f ms (found from the turns, taken out)",
                   1e3 * e.lag_s, 1e3 * e.sigma_s);
-  } else if (std::abs(e.lag_s) > 2.0 * e.sigma_s) {
-    // A lag or a forward lever arm, or a lag the turns know only to 20 ms or worse (few or gentle turns: a
+  } else if (e.significant() || std::abs(e.lag_s) > 2.0 * e.sigma_s) {
+    // A lag or a lever arm along the track (one within 2 sigma of its prior, however well the turns know it), or a
+    // lag the turns know only to 20 ms or worse (few or gentle turns: a
     // reversing manoeuvre's 281 ms read as 274 +- 29), beyond 2 of the turns' sigmas (under vibration about half
     // their real scatter: a stop-and-go drive's 144 ms read as 142 +- 48): the filter over the whole file
     // decides, with and without the lag; it refused 531 +- 31 ms and 542 +- 88 ms read for true lags of 74 and
@@ -273,11 +287,7 @@ void decide(const Drive& in) {
     // antenna ahead on the track as a late IMU does. Unless the lag explains the fixes better than the lever
     // arm (estimated by the filter on the way) by as much as the 1-parameter test asks, it is not taken out:
     // the pair is the model's to estimate (lever_arm, time_offset) and ldv diagnose's to tell apart.
-    const bool model_has_lever = [&] {
-      const auto m = resolve_model(in.options.model, in.options.add, in.options.drop);
-      return std::find(m.begin(), m.end(), "lever_arm") != m.end();
-    }();
-    const double cost_lever = model_has_lever ? NAN : likelihood.cost_with("lever_arm");
+    const double cost_lever = model_has(in.options, "lever_arm") ? NAN : likelihood.cost_with("lever_arm");
     const bool lever_explains = std::isfinite(cost_lever) && !(cost_lag + kLagLikelihoodGain < cost_lever);
     const bool take = (noise_with < kLagNoiseGain * noise_without || fall > kLagLikelihoodGain) && !lever_explains;
     if (take) {
@@ -288,9 +298,9 @@ void decide(const Drive& in) {
     char why[160];
     if (e.sigma_s >= ImuLatencyEstimate::kMaxSigma_s)
       std::snprintf(why, sizeof why, "known by the turns to %.0f ms only", 1e3 * e.sigma_s);
-    else if (std::abs(e.lag_s) <= e.lever_arm_equivalent_lag_s())
-      std::snprintf(why, sizeof why, "within what a forward antenna lever arm of %.1f m explains at %.1f m/s (%.0f ms)",
-                    ImuLatencyEstimate::kMaxLeverArmAlong_m, e.median_speed_mps, 1e3 * e.lever_arm_equivalent_lag_s());
+    else if (e.significant() || std::abs(e.lag_s) <= e.lever_arm_equivalent_lag_s())
+      std::snprintf(why, sizeof why, "within what an antenna lever arm of %.1f m along the track explains at %.1f m/s",
+                    std::abs(e.lag_s) * e.median_speed_mps, e.median_speed_mps);
     else
       std::snprintf(why, sizeof why, "only %.1f of the turns' sigmas", std::abs(e.lag_s) / e.sigma_s);
     // A lag the fixes refute (the real walk: the turns' 406 ms raises -2 ln L by 5800, the pass loses the track).
@@ -326,6 +336,8 @@ void decide(const Drive& in) {
 }
 
 }  // namespace
+
+double largest_lever_arm_along_m(const FilterOptions& o) { return 2.0 * o.lever_arm.init_std.x(); }
 
 DriveImuLatency decide_drive_imu_latency(std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
                                          const KfGinsConfig& config, const FilterOptions& options,

@@ -1,7 +1,8 @@
 #pragma once
 // Whether a drive's IMU stamps are late against GNSS time (a consumer IMU behind a USB or serial buffer), decided
-// over the whole file before the filter runs: the turns' estimate (imu_latency.hpp) is taken out when significant;
-// a lag a forward antenna lever arm could explain, or one the turns know only roughly, is judged by filter passes
+// over the whole file before the filter runs: the turns' estimate (imu_latency.hpp) is taken out when significant
+// and beyond what a lever arm within 2 sigma of its prior explains; a lag such a lever arm along the track could
+// explain, or one the turns know only roughly, is judged by filter passes
 // with and without it (the IMU noise they need, the GNSS positions' likelihood) and against a lever arm estimated
 // on the way; a lag taken out is refined by the likelihood over further shifts. `ldv nav`, `outage`, `diagnose`
 // read it through toolbox/assess/nav_inputs.
@@ -35,6 +36,10 @@ struct DriveImuLatency {
   } refined;
   std::string note;  // "; IMU latency ...": what was found and decided, for `ldv nav`'s first line
 };
+
+// The largest lever arm along the track a model could hold instead of a lag [m]: 2 sigma of the lever-arm prior (2 m a
+// component by default: a van's antenna sits up to 4 m from an IMU under a seat).
+double largest_lever_arm_along_m(const FilterOptions& options);
 
 // imu and gnss in time order on one time base; a lag taken out is taken out of `imu` (in place). options: the run's
 // filter options (the passes judge with them); refine_in_filter: refine a lag taken out (off in `ldv diagnose`,

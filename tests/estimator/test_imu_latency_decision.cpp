@@ -146,6 +146,21 @@ TEST(ImuLatencyDecision, GivenALeverArmTheLikelihoodPrefersToNothing_ThenTheLeve
   EXPECT_FALSE(in.latency.applied) << in.latency.turns.lag_s << " +- " << in.latency.turns.sigma_s;
 }
 
+// Issue 48, item 4: a van's antenna 3.5 m behind a MEMS IMU (lever arm -3.54, 2.35, -2.63 m), no lag, 5 Hz RTK. The
+// turns read the course's lag behind the heading (l_x / v, 380 ms at 10 m/s) as the IMU stamps 388 +- 7 ms early, a
+// lag beyond what a 1.5 m lever arm explains: it was taken out unasked, and `ldv diagnose` then named a -362 ms
+// time_offset to undo it, never the lever arm. A lag within what a lever arm inside 2 sigma of its prior explains
+// competes with it.
+TEST(ImuLatencyDecision, GivenAVansLeverArmOnAMemsImuAndNoLag_ThenTheLeverArmCompetesAndNoLagIsTakenOut) {
+  const assess::NavInputs in =
+      load("van_lever", 0.0, {"lever_arm=-3.54,2.35,-2.63"}, "3dm-gx2-typical", 5.0, 0.0, 12, "drive", false, 600.0);
+  ASSERT_TRUE(in.latency.turns.valid);
+  ASSERT_GT(std::abs(in.latency.turns.lag_s), 3.0 * in.latency.turns.sigma_s) << "the ambiguous case";
+  ASSERT_NE(in.imu_note.find("a lever arm instead of the lag"), std::string::npos) << in.imu_note;
+  EXPECT_TRUE(in.latency.lever_explains) << in.imu_note;
+  EXPECT_FALSE(in.latency.applied) << in.latency.turns.lag_s << " +- " << in.latency.turns.sigma_s;
+}
+
 }  // namespace
 }  // namespace ldv::est
 

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "common/io/input_error.hpp"
+#include "estimator/calibrate/drive_imu_latency.hpp"
 #include "estimator/calibrate/imu_latency.hpp"
 #include "toolbox/assess/nav_inputs.hpp"
 #include "tools/ldv/cli_checks.hpp"
@@ -86,11 +87,14 @@ void run_timesync(const TimesyncArgs& t) {
   std::printf(
       "  add it to the IMU's times: ldv.imu_table's time.offset_s (plus the one there), or ldv.imu_time_shift_s "
       "/ --imu-time-shift for a KF-GINS imu.txt\n");
-  if (std::abs(offset_s) < e.lever_arm_equivalent_lag_s())
+  // An antenna l_x ahead of the IMU turns the track's course as stamps l_x / v late would (behind: early).
+  const double lever_along_m = std::abs(offset_s) * e.median_speed_mps;
+  const double largest_m = est::largest_lever_arm_along_m(in.options);
+  if (lever_along_m <= largest_m)
     std::printf(
-        "  note: an offset this small is also what a forward antenna lever arm up to %.1f m makes at the "
-        "drive's %.1f m/s: `ldv diagnose` tells the time_offset and lever_arm effects apart\n",
-        est::ImuLatencyEstimate::kMaxLeverArmAlong_m, e.median_speed_mps);
+        "  note: the same turns are what an antenna %.2f m %s the IMU makes at the drive's %.1f m/s (a lever arm "
+        "within the %.1f m a vehicle allows): `ldv diagnose` tells the time_offset and lever_arm effects apart\n",
+        lever_along_m, offset_s < 0.0 ? "ahead of" : "behind", e.median_speed_mps, largest_m);
 }
 
 void add_timesync_command(CLI::App& app) {
