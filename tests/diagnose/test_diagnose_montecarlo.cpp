@@ -1,7 +1,8 @@
 // Many-seed study (label montecarlo): detection, false alarms and error reduction of `ldv diagnose`
 // on simulated drives with exactly one hidden effect, tactical and MEMS grades, large and
 // near-threshold sizes. Seeds per case: LDV_DIAG_SEEDS (default 20); LDV_DIAG_SIZE=none|large|near runs only
-// the cases of that size (e.g. the false-alarm calibration alone). Prints one table.
+// the cases of that size (e.g. the false-alarm calibration alone), LDV_DIAG_EFFECT=TEXT those whose effect spec
+// contains TEXT. Prints one table.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -53,8 +54,10 @@ TEST(DiagnoseMonteCarlo, DetectionFalseAlarmsAndErrorReduction) {
   std::printf("%-8s %-40s %-9s %-5s %6s %6s %7s %7s %8s %8s\n", "grade", "hidden effect", "model", "size", "first",
               "group1", "verdict", "any", "removed", "cpu_s");
   const char* only_size = std::getenv("LDV_DIAG_SIZE");
+  const char* only_effect = std::getenv("LDV_DIAG_EFFECT");  // the cases whose effect spec contains it
   for (const Case& c : kCases) {
     if (only_size && c.size != only_size) continue;
+    if (only_effect && c.effect.find(only_effect) == std::string::npos) continue;
     int first = 0, group = 0, verdict = 0, any = 0, reductions = 0;
     double removed_min = 1e300, cpu = 0.0;
     const std::string name = c.effect.empty() ? "" : testing::effect_name(c.effect);

@@ -2,6 +2,7 @@
 // One diagnosis trial on a simulated drive with (at most) one hidden effect, and what the tests measure:
 // is the hidden effect ranked first (or in the first group), is it the verdict, and how much of the
 // excess position error (above a filter that knew the true model) adding the verdict removes.
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -16,6 +17,7 @@ struct Trial {
   uint64_t seed = 1;
   double duration_s = 900.0;
   std::string scenario = "drive";
+  double gnss_rate_hz = 1.0;
 };
 
 struct Outcome {
@@ -26,6 +28,8 @@ struct Outcome {
   bool verdict_any = false;       // the verdict adds anything
   double err_base_m = NAN, err_after_m = NAN, err_ref_m = NAN;  // RMS 3D position error vs truth
   double excess_removed() const { return (err_base_m - err_after_m) / (err_base_m - err_ref_m); }
+  // The hidden effect's estimate where the verdict adds it: its largest error over its sigma, any component.
+  double estimate_error_sigmas = NAN;
   double cpu_s = 0.0;
 };
 
@@ -36,6 +40,7 @@ inline Outcome run_trial(const Trial& t, bool with_reference = false) {
   c.seed = t.seed;
   c.duration_s = t.duration_s;
   c.scenario = t.scenario;
+  c.gnss_rate_hz = t.gnss_rate_hz;
   const sim::SimResult r = simulate(c);
   const DiagnoseInputs in = inputs(r);
   const DiagnoseOptions opt = options(r, t.model);
@@ -52,6 +57,14 @@ inline Outcome run_trial(const Trial& t, bool with_reference = false) {
   }
   o.verdict_any = !d.add.empty();
   for (const auto& a : d.add) o.verdict_has |= (a == name);
+  for (const EffectEstimate& e : d.added_estimates)
+    if (e.name == name) {
+      const std::vector<double>& truth = r.injected_effects.at(name);
+      o.estimate_error_sigmas = 0.0;
+      for (int i = 0; i < e.value_si.size(); ++i)
+        o.estimate_error_sigmas =
+            std::max(o.estimate_error_sigmas, std::abs(e.value_si(i) - truth[static_cast<size_t>(i)]) / e.std_si(i));
+    }
   o.err_base_m = d.truth_before.rms_pos_3d_m;
   o.err_after_m = d.truth_after.rms_pos_3d_m;
   if (with_reference && !name.empty()) {

@@ -19,6 +19,9 @@ struct DiagnoseOptions {
   ScreeningOptions screening;
   int max_added = 3;             // stepwise: at most this many effects added
   int max_confirmed_per_step = 2;  // significant candidates rerun per step, best first
+  // Where the gate rejects more than 1 % of a sensor's measurements, every testable candidate is rerun too
+  // (diagnosis.cpp: so far from the data the score test loses its power).
+  bool confirm_all_when_gate_rejects = true;
   double truth_skip_s = 60.0;    // initial convergence left out of the error against truth
   // A model far from the data rejects most measurements and diverges: then the diagnosis runs with
   // the gate opened (every measurement used), so the innovations still carry the missing effect.
