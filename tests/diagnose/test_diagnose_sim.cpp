@@ -72,6 +72,24 @@ TEST(DiagnoseSim, GivenAVansLeverArmOnAMemsImu_ThenTheLikelihoodNamesItFirstAndT
   EXPECT_GE(o.excess_removed(), 0.9);
 }
 
+// Issue 48, item 4: a MEMS accel misalignment of realistic size (1300, -1200, 1500 arcsec: 6-7 mrad), 5 Hz RTK, a
+// model (ins15) that also misses the grade's scale factors. The screening ranked a gyro misalignment first and the
+// accel misalignment fifth, past the two candidates rerun, and the verdict added the gyro misalignment first. Every
+// significant candidate is rerun now: the accel misalignment gains the most. (Its value: within 2.5 and 5.8 sigma of
+// the truth here, the missing scales' share in it; 2.1 and 3.3 sigma with kfgins21, which holds them.)
+TEST(DiagnoseSim, GivenAMemsAccelMisalignment_ThenTheRerunsNameItFirst) {
+  for (const uint64_t seed : {11u, 12u}) {
+    Trial t{"3dm-gx2-typical", "accel_misalignment=1300,-1200,1500", "ins15", seed};
+    t.duration_s = 1200.0;
+    t.gnss_rate_hz = 5.0;
+    const Outcome o = testing::run_trial(t);
+    std::printf("MEMS accel misalignment, seed %lu: first %s, estimate within %.1f sigma\n",
+                static_cast<unsigned long>(seed), o.first.c_str(), o.estimate_error_sigmas);
+    EXPECT_TRUE(o.ranked_first) << "seed " << seed << ": first " << o.first;
+    EXPECT_TRUE(o.verdict_has) << "seed " << seed;
+  }
+}
+
 TEST(DiagnoseSim, LeverArmEstimateAndJsonContract) {
   testing::SimCase c;
   c.effect = "lever_arm=0.5,-0.3,-1.2";

@@ -239,7 +239,7 @@ Diagnosis diagnose(const DiagnoseInputs& in, const DiagnoseOptions& opt) {
     if (step < opt.max_added) {
       int tried = 0;
       for (const CandidateScore& cs : st.screening.ranked) {
-        if (!cs.significant || tried >= opt.max_confirmed_per_step) continue;
+        if (!cs.significant || (opt.max_confirmed_per_step >= 0 && tried >= opt.max_confirmed_per_step)) continue;
         // A group member of an already tried candidate explains the same signal: try it only if it
         // ranks close (the rerun decides between them).
         ++tried;

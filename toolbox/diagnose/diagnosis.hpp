@@ -18,7 +18,10 @@ struct DiagnoseOptions {
   est::FilterOptions model;      // the model under test
   ScreeningOptions screening;
   int max_added = 3;             // stepwise: at most this many effects added
-  int max_confirmed_per_step = 2;  // significant candidates rerun per step, best first
+  // Significant candidates rerun per step, best first; -1: every one. The likelihood of the reruns decides among
+  // them: the screening's order can be wrong where effects look alike (a MEMS accel misalignment of 6-7 mrad ranked
+  // fifth behind a gyro misalignment, its rerun gains the most).
+  int max_confirmed_per_step = -1;
   // Where the gate rejects more than 1 % of a sensor's measurements, every testable candidate is rerun too
   // (diagnosis.cpp: so far from the data the score test loses its power).
   bool confirm_all_when_gate_rejects = true;
