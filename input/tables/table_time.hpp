@@ -1,6 +1,9 @@
 #pragma once
 // When a table's row was taken, as its configuration describes it (`time:` of ldv.imu_table / ldv.gnss_table):
 //   {column: NAME, unit: s|ms|us|ns, offset_s: X}   a time column (GPS seconds of week once offset_s is added)
+//   {column: NAME, format: utc|gpst, offset_s: X}    a date-time column ("2024-08-27T17:30:01.123Z", "2024/08/27
+//                                                   17:30:01.123"; a stated zone is applied, UTC goes to GPS time
+//                                                   with the leap seconds), in seconds of the first row's GPS week
 //   {column: NAME, rate_hz: R, offset_s: X}         a sample counter ticking at R
 //   {row_period_s: P, offset_s: X}                  no usable column: row k (from 0) at X + k P (a logger whose time
 //                                                   column steps by 0.1 s while its rows come at 100 Hz)
@@ -10,11 +13,13 @@
 
 #include "common/config/config_section.hpp"
 #include "common/io/delimited_table.hpp"
+#include "common/time/gps_time.hpp"
 
 namespace ldv::input {
 
 struct TableTime {
   std::string column;  // empty: from the row index
+  enum class Format { kNumber, kUtcText, kGpstText } format = Format::kNumber;
   double seconds_per_unit = 1.0;
   double row_period_s = 0.0;  // > 0 with no column
   double offset_s = 0.0;
@@ -36,6 +41,7 @@ class RowClock {
   TableTime time_;
   const TableLayout* layout_;
   int column_ = -1;
+  mutable ContinuousGpsTime weeks_;  // date-time columns: seconds of the first row's week
 };
 
 }  // namespace ldv::input

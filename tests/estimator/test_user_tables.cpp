@@ -193,6 +193,12 @@ TEST(UserTables, GivenAWrongDescription_ThenTheErrorNamesTheFileLineAndKey) {
                                       "    path: log.csv\n    time: {column: t}\n"
                                       "    position: {columns: [lat, lon, h]}\n");
   EXPECT_NE(no_std.find("ldv.gnss_table.std_m"), std::string::npos) << no_std;
+  const std::string format = error_of(
+      "    path: log.csv\n    time: {column: t, format: local}\n    gyro: {columns: [gx, gy, gz], unit: deg/s}\n"
+      "    accel: {columns: [ax, ay, az], unit: g}\n",
+      gnss_ok);
+  EXPECT_NE(format.find("ldv.imu_table.time.format"), std::string::npos) << format;
+  EXPECT_NE(format.find("utc"), std::string::npos) << "the choices: " << format;
   const std::string typo = error_of(imu_ok + "    axis: [1, 2, 3]\n", gnss_ok);
   EXPECT_NE(typo.find("ldv.imu_table.axis"), std::string::npos) << typo;
   EXPECT_NE(typo.find("axes"), std::string::npos) << "the nearest key: " << typo;
@@ -245,6 +251,49 @@ TEST(UserTables, GivenATableInOtherAxesAndACalibration_ThenItIsAppliedInTheDevic
   EXPECT_NEAR(f_frd.x(), 0.0, 1e-9);
   EXPECT_NEAR(f_frd.y(), 0.0, 1e-9) << "the bias taken out on the device's y, before y became -right";
   EXPECT_NEAR(f_frd.z(), -earth::kStandardGravity_mps2, 1e-9);  // up in front-right-down
+  fs::remove_all(dir);
+}
+
+// A logger that stamps its rows with the date and time of day (UTC, ISO 8601, or local with its zone; GPS time as
+// RTKLIB prints it): `time: {column: NAME, format: utc|gpst}` reads them as GPS seconds of week. Truth by hand:
+// Tuesday 2024-08-27 17:30:00 UTC is 2 days 17.5 h into GPS week 2329 plus the 18 leap seconds: 235818 s.
+TEST(UserTables, GivenDateTimeStampsInUtcLocalOrGpst_ThenTheRowsAreAtTheirGpsSecondsOfWeek) {
+  const fs::path dir = fs::temp_directory_path() / ("ldv_user_tables_dates_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  struct Variant {
+    const char* name;
+    std::string stamp;  // printf pattern of the stamp, given the centiseconds past 17:30:00 (or 19:30:00 local)
+    const char* format;
+    double first_row_sow_s;
+  };
+  const Variant variants[] = {{"utc", "2024-08-27T17:30:%02d.%02dZ", "utc", 235818.0},
+                              {"local", "2024-08-27 19:30:%02d.%02d+02:00", "utc", 235818.0},
+                              {"gpst", "2024/08/27 17:30:%02d.%02d", "gpst", 235800.0}};
+  for (const Variant& v : variants) {
+    {
+      std::ofstream csv(dir / "log.csv");
+      csv << "stamp,gx,gy,gz,ax,ay,az\n";
+      for (int k = 0; k < 300; ++k) {
+        char stamp[64];
+        std::snprintf(stamp, sizeof stamp, v.stamp.c_str(), k / 100, k % 100);
+        csv << stamp << ",0,0,0,0,0,-1\n";
+      }
+    }
+    std::ofstream(dir / "c.yaml") << "gnsspath: gnss.txt\n"
+                                  << "imunoise:\n  arw: [1, 1, 1]\n  vrw: [1, 1, 1]\n  gbstd: [10, 10, 10]\n"
+                                  << "  abstd: [100, 100, 100]\n  gsstd: [0, 0, 0]\n  asstd: [0, 0, 0]\n  corrtime: 1\n"
+                                  << "ldv:\n  imu_table:\n    path: log.csv\n"
+                                  << "    time: {column: stamp, format: " << v.format << "}\n"
+                                  << "    gyro: {columns: [gx, gy, gz], unit: deg/s}\n"
+                                  << "    accel: {columns: [ax, ay, az], unit: g}\n";
+    std::ofstream(dir / "gnss.txt") << "235818.0 40.0 -105.0 1600.0 0.02 0.02 0.04\n";
+    KfGinsConfig cfg = load_kfgins_config((dir / "c.yaml").string());
+    const input::DriveSources read = input::read_drive_sources(input::SourceArgs{}, cfg);
+    ASSERT_EQ(read.imu.size(), 299u) << v.name;  // an increment ends at every row after the first
+    EXPECT_NEAR(read.imu.front().t_s, v.first_row_sow_s + 0.01, 1e-6) << v.name;
+    EXPECT_NEAR(read.imu.back().t_s, v.first_row_sow_s + 2.99, 1e-6) << v.name;
+    EXPECT_NEAR(read.imu.back().dt_s, 0.01, 1e-9) << v.name;
+  }
   fs::remove_all(dir);
 }
 
