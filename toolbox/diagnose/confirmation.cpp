@@ -26,13 +26,49 @@ est::FilterOptions with_candidate(const est::FilterOptions& model, const Candida
   return o;
 }
 
-Confirmation confirm(const DiagnoseInputs& in, const est::FilterOptions& model, double base_loglik,
+std::pair<double, double> log_likelihoods_over_common(const std::vector<SensitivityRecord>& a,
+                                                      const std::vector<SensitivityRecord>& b,
+                                                      double gate_probability) {
+  // Per sensor, each record of `a` with the nearest unmatched one of `b` within half the sensor's median interval: a
+  // time offset state applies every fix at a shifted IMU epoch (the records' t_s), so times match only to it.
+  std::vector<SensitivityRecord> common_a, common_b;
+  std::vector<est::SensorName> sensors;
+  for (const SensitivityRecord& r : a)
+    if (std::find(sensors.begin(), sensors.end(), r.sensor) == sensors.end()) sensors.push_back(r.sensor);
+  for (const est::SensorName sensor : sensors) {
+    std::vector<const SensitivityRecord*> ra, rb;
+    for (const SensitivityRecord& r : a)
+      if (r.sensor == sensor) ra.push_back(&r);
+    for (const SensitivityRecord& r : b)
+      if (r.sensor == sensor) rb.push_back(&r);
+    std::vector<double> intervals;
+    for (size_t k = 1; k < ra.size(); ++k) intervals.push_back(ra[k]->t_s - ra[k - 1]->t_s);
+    double half_s = 1e-4;
+    if (!intervals.empty()) {
+      std::nth_element(intervals.begin(), intervals.begin() + static_cast<long>(intervals.size() / 2), intervals.end());
+      half_s = std::max(half_s, 0.5 * intervals[intervals.size() / 2]);
+    }
+    size_t j = 0;
+    for (const SensitivityRecord* r : ra) {
+      while (j < rb.size() && rb[j]->t_s < r->t_s - half_s) ++j;
+      if (j < rb.size() && rb[j]->t_s <= r->t_s + half_s && rb[j]->innovation.size() == r->innovation.size()) {
+        common_a.push_back(*r);
+        common_b.push_back(*rb[j]);
+        ++j;
+      }
+    }
+  }
+  return {log_likelihood(common_a, gate_probability), log_likelihood(common_b, gate_probability)};
+}
+
+Confirmation confirm(const DiagnoseInputs& in, const est::FilterOptions& model, const FilterRun& base,
                      const CandidateScore& score, double long_run_factor, double effective_n) {
   Confirmation c;
   c.effect = score.name;
   c.options = with_candidate(model, score);
   c.run = run_filter(in, c.options);
-  c.loglik_gain = log_likelihood(c.run.records, c.run.gate_probability) - base_loglik;
+  const auto [base_ll, with_ll] = log_likelihoods_over_common(base.records, c.run.records, c.run.gate_probability);
+  c.loglik_gain = with_ll - base_ll;
   c.adjusted_gain = c.loglik_gain / std::max(1.0, long_run_factor);
   c.penalty = 0.5 * score.dim * std::log(std::max(2.0, effective_n));
   c.accepted = c.adjusted_gain > c.penalty;

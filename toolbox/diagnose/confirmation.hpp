@@ -4,6 +4,8 @@
 // effective sample size. The gain is divided by the long-run factor of the innovations (correlated
 // innovations inflate likelihood differences by about that factor).
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "toolbox/diagnose/filter_run.hpp"
 #include "toolbox/diagnose/score_test.hpp"
@@ -24,7 +26,15 @@ struct Confirmation {
 // Adds `score.name` to `model` with its prior centred on the screening estimate.
 est::FilterOptions with_candidate(const est::FilterOptions& model, const CandidateScore& score);
 
-Confirmation confirm(const DiagnoseInputs& in, const est::FilterOptions& model, double base_loglik,
+// The rerun's log-likelihood gain is over the measurements both runs used: an added time offset can move the first fix
+// before the IMU's start, and that fix's term (its ln det S at the initial covariance) alone gained 286 for a 1 ms
+// offset on a drive whose only effect was a 3 cm lever arm.
+Confirmation confirm(const DiagnoseInputs& in, const est::FilterOptions& model, const FilterRun& base,
                      const CandidateScore& score, double long_run_factor, double effective_n);
+
+// log L of `a` and of `b` over the measurements both hold (per sensor, paired within half its median interval), each
+// capped as log_likelihood caps it at the gate of gate_probability.
+std::pair<double, double> log_likelihoods_over_common(const std::vector<SensitivityRecord>& a,
+                                                      const std::vector<SensitivityRecord>& b, double gate_probability);
 
 }  // namespace ldv::diag

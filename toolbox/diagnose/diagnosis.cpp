@@ -244,7 +244,7 @@ Diagnosis diagnose(const DiagnoseInputs& in, const DiagnoseOptions& opt) {
         // ranks close (the rerun decides between them).
         ++tried;
         if (opt.verbose) std::fprintf(stderr, "ldv diagnose: confirming %s\n", cs.name.c_str());
-        st.confirmations.push_back(confirm(in, current, st.check.loglik, cs, lrf, n_eff));
+        st.confirmations.push_back(confirm(in, current, current_run, cs, lrf, n_eff));
         ++d.filter_runs;
       }
       // The score test is a linearisation at the model under test. So far from the data that the gate rejects
@@ -261,7 +261,7 @@ Diagnosis diagnose(const DiagnoseInputs& in, const DiagnoseOptions& opt) {
             continue;
           if (opt.verbose)
             std::fprintf(stderr, "ldv diagnose: confirming %s (the model check failed)\n", cs.name.c_str());
-          st.confirmations.push_back(confirm(in, current, st.check.loglik, cs, lrf, n_eff));
+          st.confirmations.push_back(confirm(in, current, current_run, cs, lrf, n_eff));
           ++d.filter_runs;
         }
       for (const Confirmation& c : st.confirmations)
