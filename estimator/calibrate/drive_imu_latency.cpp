@@ -339,6 +339,16 @@ void decide(const Drive& in) {
 
 double largest_lever_arm_along_m(const FilterOptions& o) { return 2.0 * o.lever_arm.init_std.x(); }
 
+double likelihood_gain_of_lag(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
+                              const KfGinsConfig& config, const FilterOptions& options, double lag_s) {
+  std::vector<ImuIncrement> stamps = imu;  // a Drive may shift its IMU; this one is only read
+  DriveImuLatency unused;
+  const Drive drive{stamps, gnss, config, options, false, unused};
+  ShiftLikelihood likelihood(drive);
+  const double plain = likelihood.cost(0.0), lagged = likelihood.cost(lag_s);
+  return plain - lagged;
+}
+
 DriveImuLatency decide_drive_imu_latency(std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
                                          const KfGinsConfig& config, const FilterOptions& options,
                                          bool refine_in_filter) {

@@ -41,6 +41,12 @@ struct DriveImuLatency {
 // component by default: a van's antenna sits up to 4 m from an IMU under a seat).
 double largest_lever_arm_along_m(const FilterOptions& options);
 
+// -2 ln L of the GNSS positions over the whole file without minus with the IMU stamps shifted by lag_s (positive:
+// the lag fits better), judged by filter passes as decide_drive_imu_latency judges a lag; NaN where a pass failed.
+// The walk's turns read 406 ms, the fixes refute it (-5800): `ldv timesync` says so when given a configuration.
+double likelihood_gain_of_lag(const std::vector<ImuIncrement>& imu, const std::vector<GnssFix>& gnss,
+                              const KfGinsConfig& config, const FilterOptions& options, double lag_s);
+
 // imu and gnss in time order on one time base; a lag taken out is taken out of `imu` (in place). options: the run's
 // filter options (the passes judge with them); refine_in_filter: refine a lag taken out (off in `ldv diagnose`,
 // which names a time_offset itself).

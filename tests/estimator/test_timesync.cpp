@@ -13,6 +13,7 @@
 #include "common/formats/kfgins_files.hpp"
 #include "sim/simulator.hpp"
 #include "tests/estimator/ldv_output.hpp"
+#include "tests/estimator/walk_datasheet_config.hpp"
 
 namespace ldv::est {
 namespace {
@@ -45,6 +46,20 @@ TEST(Timesync, GivenAMemsImuOnItsOwnClockOffsetBy0p25And5p8Seconds_ThenTheOffset
     EXPECT_LT(std::abs(found - offset_s), 3.0 * sigma) << out;
   }
   fs::remove_all(dir);
+}
+
+// The real walk (../shared, hand-held): the turns read -0.406 +- 0.043 s, the hand's heading leading the track. Given
+// its configuration, the filter judges the offset over the whole file and the fixes refute it (-2 ln L rises by
+// thousands): the command warns instead of leaving a user to shift the stamps by 0.4 s.
+TEST(Timesync, GivenTheRealWalkAndItsConfiguration_ThenTheFilterRefutesTheTurnsOffsetAndItWarns) {
+  const fs::path config = test::write_walk_datasheet_config("timesync");
+  const std::string out = test::ldv_output("timesync --kfgins-config " + config.string());
+  const std::string json = test::ldv_output("timesync --json --kfgins-config " + config.string());
+  fs::remove(config);
+  std::printf("%s%s", out.c_str(), json.c_str());
+  EXPECT_NE(out.find("\noffset_s -0.4"), std::string::npos) << out;
+  EXPECT_NE(out.find("warning: the GNSS positions fit worse with it"), std::string::npos) << out;
+  EXPECT_NE(json.find("\"refuted\":true"), std::string::npos) << json;
 }
 
 TEST(Timesync, GivenNoTurnsToCompare_ThenItSaysWhatIsMissing) {

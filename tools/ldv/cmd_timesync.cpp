@@ -72,11 +72,19 @@ void run_timesync(const TimesyncArgs& t) {
                          "overlapping the IMU by more than the search range " +
                          std::to_string(t.max_offset_s) + " s)");
   const double offset_s = -e.lag_s;  // to add to the IMU's times
+  // With a configuration (its noise), the filter judges the offset over the whole file: the turns alone read the
+  // real walk's hand-held heading lead as 406 ms that the fixes refute.
+  const double gain =
+      config.empty() ? NAN : est::likelihood_gain_of_lag(in.imu, in.gnss, in.config, in.options, e.lag_s);
+  const bool refuted = gain < -est::DriveImuLatency::kLikelihoodTest;
   if (t.json) {
+    char judged[96] = "null";
+    if (std::isfinite(gain)) std::snprintf(judged, sizeof judged, "%.3f", gain);
     std::printf(
         "{\"tool\":\"ldv timesync\",\"offset_s\":%.6f,\"sigma_s\":%.6f,\"intervals\":%d,\"turning_intervals\":%d,"
-        "\"outlier_intervals\":%d,\"residual_rms_rad\":%.6g}\n",
-        offset_s, e.sigma_s, e.intervals, e.turning_intervals, e.outlier_intervals, e.residual_rms_rad);
+        "\"outlier_intervals\":%d,\"residual_rms_rad\":%.6g,\"likelihood_gain\":%s,\"refuted\":%s}\n",
+        offset_s, e.sigma_s, e.intervals, e.turning_intervals, e.outlier_intervals, e.residual_rms_rad, judged,
+        refuted ? "true" : "false");
     return;
   }
   std::printf(
@@ -87,6 +95,15 @@ void run_timesync(const TimesyncArgs& t) {
   std::printf(
       "  add it to the IMU's times: ldv.imu_table's time.offset_s (plus the one there), or ldv.imu_time_shift_s "
       "/ --imu-time-shift for a KF-GINS imu.txt\n");
+  if (refuted)
+    std::printf(
+        "  warning: the GNSS positions fit worse with it (-2 ln L of the fixes rises by %.1f over the whole file, the "
+        "filter run with %s): the turns' offset is not one of the clocks (a hand-held unit's heading leads its "
+        "track; a lever arm)\n",
+        -gain, config.c_str());
+  else if (std::isfinite(gain))
+    std::printf("  the filter over the whole file: -2 ln L of the GNSS positions %s by %.1f with it\n",
+                gain >= 0.0 ? "falls" : "rises", std::abs(gain));
   // An antenna l_x ahead of the IMU turns the track's course as stamps l_x / v late would (behind: early).
   const double lever_along_m = std::abs(offset_s) * e.median_speed_mps;
   const double largest_m = est::largest_lever_arm_along_m(in.options);
