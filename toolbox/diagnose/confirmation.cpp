@@ -29,7 +29,7 @@ est::FilterOptions with_candidate(const est::FilterOptions& model, const Candida
 std::pair<double, double> log_likelihoods_over_common(const std::vector<SensitivityRecord>& a,
                                                       const std::vector<SensitivityRecord>& b,
                                                       double gate_probability) {
-  // Per sensor, each record of `a` with the nearest unmatched one of `b` within half the sensor's median interval: a
+  // Per sensor, each record of `a` with the first unmatched one of `b` within half the sensor's median interval: a
   // time offset state applies every fix at a shifted IMU epoch (the records' t_s), so times match only to it.
   std::vector<SensitivityRecord> common_a, common_b;
   std::vector<est::SensorName> sensors;

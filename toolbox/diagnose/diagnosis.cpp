@@ -240,8 +240,6 @@ Diagnosis diagnose(const DiagnoseInputs& in, const DiagnoseOptions& opt) {
       int tried = 0;
       for (const CandidateScore& cs : st.screening.ranked) {
         if (!cs.significant || (opt.max_confirmed_per_step >= 0 && tried >= opt.max_confirmed_per_step)) continue;
-        // A group member of an already tried candidate explains the same signal: try it only if it
-        // ranks close (the rerun decides between them).
         ++tried;
         if (opt.verbose) std::fprintf(stderr, "ldv diagnose: confirming %s\n", cs.name.c_str());
         st.confirmations.push_back(confirm(in, current, current_run, cs, lrf, n_eff));
@@ -260,7 +258,7 @@ Diagnosis diagnose(const DiagnoseInputs& in, const DiagnoseOptions& opt) {
                                           [&](const Confirmation& c) { return c.effect == cs.name; }))
             continue;
           if (opt.verbose)
-            std::fprintf(stderr, "ldv diagnose: confirming %s (the model check failed)\n", cs.name.c_str());
+            std::fprintf(stderr, "ldv diagnose: confirming %s (the gate drops fixes)\n", cs.name.c_str());
           st.confirmations.push_back(confirm(in, current, current_run, cs, lrf, n_eff));
           ++d.filter_runs;
         }
