@@ -254,7 +254,7 @@ bool model_has(const FilterOptions& o, const std::string& effect) {
 // diagnose then undid it with a time_offset.
 bool a_lever_arm_could_explain(const Drive& in, const ImuLatencyEstimate& e) {
   return !model_has(in.options, "lever_arm") &&
-         std::abs(e.lag_s) * e.median_speed_mps <= largest_lever_arm_along_m(in.options);
+         e.equivalent_lever_arm_along_m() <= largest_lever_arm_along_m(in.options);
 }
 
 void decide(const Drive& in) {
@@ -300,7 +300,7 @@ void decide(const Drive& in) {
       std::snprintf(why, sizeof why, "known by the turns to %.0f ms only", 1e3 * e.sigma_s);
     else if (e.significant() || std::abs(e.lag_s) <= e.lever_arm_equivalent_lag_s())
       std::snprintf(why, sizeof why, "within what an antenna lever arm of %.1f m along the track explains at %.1f m/s",
-                    std::abs(e.lag_s) * e.median_speed_mps, e.median_speed_mps);
+                    e.equivalent_lever_arm_along_m(), e.median_speed_mps);
     else
       std::snprintf(why, sizeof why, "only %.1f of the turns' sigmas", std::abs(e.lag_s) / e.sigma_s);
     // A lag the fixes refute (the real walk: the turns' 406 ms raises -2 ln L by 5800, the pass loses the track).

@@ -51,6 +51,8 @@ struct ImuLatencyEstimate {
   double lever_arm_equivalent_lag_s() const {
     return median_speed_mps > 0 ? kMaxLeverArmAlong_m / median_speed_mps : 1e9;
   }
+  // The other way round: the antenna's offset along the track [m] that turns the course as this lag does.
+  double equivalent_lever_arm_along_m() const { return std::abs(lag_s) * median_speed_mps; }
   // Worth correcting the data for without asking the filter: beyond 3 sigma, beyond the lever-arm equivalent, at
   // least 5 ms, and known to better than kMaxSigma_s. (`ldv nav` lets the filter decide on a lag beyond 3 sigma
   // that fails the other two: drive_imu_latency.cpp.)

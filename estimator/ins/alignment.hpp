@@ -77,8 +77,6 @@ class Aligner {
   const std::string& method() const { return method_; }
   // The static start's mean rate when it is a turn-on bias (> 10 x Earth rate, from >= static_min_s at rest).
   const std::optional<Vec3>& gyro_bias_seed() const { return gyro_bias_seed_; }
-  // Seconds of the static start up to the last fix at the resting position (the seed needs static_min_s of them).
-  double rest_s() const { return static_cast<double>(rest_second_rates().size()); }
   // Its 1-sigma per axis: the scatter of the seconds it was averaged over, over sqrt(their number). Seconds, not
   // samples: a sample's rate carries the angle quantization, which does not accumulate and averages out of the
   // mean; the scatter of 1 s means is the angle random walk's.
@@ -108,6 +106,8 @@ class Aligner {
   };
   std::vector<StaticSecond> static_seconds_;
   std::vector<Vec3> rest_second_rates() const;  // those before the GNSS showed the vehicle leave the rest
+  // Seconds of the static start up to the last fix at the resting position (the seed needs static_min_s of them).
+  double rest_s() const { return static_cast<double>(rest_second_rates().size()); }
   std::vector<Vec3> still_seconds() const;      // those without the seconds that turned
   // Where the GNSS placed the rest: the first fix, and the last fix within the fixes' noise of it before two in a row
   // left it (then rest_left_: the seconds after rest_end_t_s_ may have moved).

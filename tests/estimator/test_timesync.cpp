@@ -20,13 +20,18 @@ namespace {
 
 namespace fs = std::filesystem;
 
-TEST(Timesync, GivenAMemsImuOnItsOwnClockOffsetBy0p25And5p8Seconds_ThenTheOffsetIsFoundWithin3Sigma) {
+// A consumer MEMS IMU driven for 5 min with 5 Hz RTK (the drive both offset tests shift).
+sim::SimResult mems_drive() {
   sim::SimRequest r;
   r.grade = "3dm-gx2-typical";
   r.seed = 5;
   r.duration_s = 300.0;
   r.gnss_rate_hz = 5.0;
-  const sim::SimResult s = sim::simulate(r);
+  return sim::simulate(r);
+}
+
+TEST(Timesync, GivenAMemsImuOnItsOwnClockOffsetBy0p25And5p8Seconds_ThenTheOffsetIsFoundWithin3Sigma) {
+  const sim::SimResult s = mems_drive();
   const fs::path dir = fs::temp_directory_path() / ("ldv_timesync_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   write_kfgins_gnss((dir / "gnss.txt").string(), s.gnss, false);
@@ -65,12 +70,7 @@ TEST(Timesync, GivenTheRealWalkAndItsConfiguration_ThenTheFilterRefutesTheTurnsO
 // The counterpart: a MEMS IMU whose clock runs 0.25 s behind, given the drive's configuration: the filter over the
 // whole file agrees (-2 ln L of the fixes falls by thousands with the offset), no warning.
 TEST(Timesync, GivenATrueOffsetAndTheConfiguration_ThenTheFilterAgreesAndNothingIsWarned) {
-  sim::SimRequest r;
-  r.grade = "3dm-gx2-typical";
-  r.seed = 5;
-  r.duration_s = 300.0;
-  r.gnss_rate_hz = 5.0;
-  sim::SimResult s = sim::simulate(r);
+  sim::SimResult s = mems_drive();
   const fs::path dir = fs::temp_directory_path() / ("ldv_timesync_config_" + std::to_string(::getpid()));
   sim::write_outputs(s, dir.string());
   std::vector<ImuIncrement> late = s.imu;

@@ -31,7 +31,7 @@ std::pair<double, double> log_likelihoods_over_common(const std::vector<Sensitiv
                                                       double gate_probability) {
   // Per sensor, each record of `a` with the first unmatched one of `b` within half the sensor's median interval: a
   // time offset state applies every fix at a shifted IMU epoch (the records' t_s), so times match only to it.
-  std::vector<SensitivityRecord> common_a, common_b;
+  double ll_a = 0.0, ll_b = 0.0;
   std::vector<est::SensorName> sensors;
   for (const SensitivityRecord& r : a)
     if (std::find(sensors.begin(), sensors.end(), r.sensor) == sensors.end()) sensors.push_back(r.sensor);
@@ -52,13 +52,13 @@ std::pair<double, double> log_likelihoods_over_common(const std::vector<Sensitiv
     for (const SensitivityRecord* r : ra) {
       while (j < rb.size() && rb[j]->t_s < r->t_s - half_s) ++j;
       if (j < rb.size() && rb[j]->t_s <= r->t_s + half_s && rb[j]->innovation.size() == r->innovation.size()) {
-        common_a.push_back(*r);
-        common_b.push_back(*rb[j]);
+        ll_a += log_likelihood_term(*r, gate_probability);
+        ll_b += log_likelihood_term(*rb[j], gate_probability);
         ++j;
       }
     }
   }
-  return {log_likelihood(common_a, gate_probability), log_likelihood(common_b, gate_probability)};
+  return {ll_a, ll_b};
 }
 
 Confirmation confirm(const DiagnoseInputs& in, const est::FilterOptions& model, const FilterRun& base,

@@ -249,10 +249,7 @@ Diagnosis diagnose(const DiagnoseInputs& in, const DiagnoseOptions& opt) {
       // fixes, the states absorb a large missing effect's signal and the gate drops the fixes that carry it: a
       // van's 4.9 m lever arm on a MEMS drive scored p = 0.12 while its rerun gained 8826 in log-likelihood
       // (issue 48, item 4). Then every testable candidate is confirmed by its rerun, and the likelihood decides.
-      const bool gate_drops_fixes =
-          std::any_of(st.check.sensors.begin(), st.check.sensors.end(),
-                      [](const SensorCheck& c) { return c.rejected > std::max(1, c.count / 100); });
-      if (opt.confirm_all_when_gate_rejects && gate_drops_fixes)
+      if (opt.confirm_all_when_gate_rejects && st.check.gate_drops_fixes())
         for (const CandidateScore& cs : st.screening.ranked) {
           if (!cs.testable || std::any_of(st.confirmations.begin(), st.confirmations.end(),
                                           [&](const Confirmation& c) { return c.effect == cs.name; }))

@@ -41,8 +41,12 @@ std::vector<double> autocorrelation(const std::vector<Eigen::VectorXd>& x, int m
 
 }  // namespace
 
-bool SensorCheck::ok() const {
-  return !optimistic() && rejected <= std::max(1, count / 100);
+bool SensorCheck::gate_drops_fixes() const { return rejected > std::max(1, count / 100); }
+
+bool SensorCheck::ok() const { return !optimistic() && !gate_drops_fixes(); }
+
+bool ModelCheck::gate_drops_fixes() const {
+  return std::any_of(sensors.begin(), sensors.end(), [](const SensorCheck& s) { return s.gate_drops_fixes(); });
 }
 
 bool ModelCheck::consistent() const {
@@ -57,15 +61,17 @@ const SensorCheck* ModelCheck::find(est::SensorName k) const {
   return nullptr;
 }
 
+double log_likelihood_term(const SensitivityRecord& r, double gate_probability) {
+  const Eigen::LLT<Eigen::MatrixXd> llt(r.S);
+  if (llt.info() != Eigen::Success) return 0.0;
+  const double log_det = 2.0 * llt.matrixLLT().diagonal().array().log().sum();
+  const double gate = math::chi_square_quantile(gate_probability, static_cast<int>(r.innovation.size()));
+  return -0.5 * (log_det + std::min(r.innovation.dot(llt.solve(r.innovation)), gate));
+}
+
 double log_likelihood(const std::vector<SensitivityRecord>& records, double gate_probability) {
   double ll = 0.0;
-  for (const SensitivityRecord& r : records) {
-    const Eigen::LLT<Eigen::MatrixXd> llt(r.S);
-    if (llt.info() != Eigen::Success) continue;
-    const double log_det = 2.0 * llt.matrixLLT().diagonal().array().log().sum();
-    const double gate = math::chi_square_quantile(gate_probability, static_cast<int>(r.innovation.size()));
-    ll += -0.5 * (log_det + std::min(r.innovation.dot(llt.solve(r.innovation)), gate));
-  }
+  for (const SensitivityRecord& r : records) ll += log_likelihood_term(r, gate_probability);
   return ll;
 }
 

@@ -41,7 +41,8 @@ struct SensorCheck {
   // model is pessimistic (noise larger than needed), which hides nothing.
   bool optimistic() const { return mean_nis.value > mean_nis.hi; }
   bool pessimistic() const { return mean_nis.value < mean_nis.lo; }
-  bool ok() const;  // not optimistic and at most 1 % gate rejections
+  bool gate_drops_fixes() const;  // more than 1 % of the measurements (at least 2) rejected at the gate
+  bool ok() const;                // not optimistic and the gate drops no more than that
 };
 
 struct ModelCheck {
@@ -49,6 +50,7 @@ struct ModelCheck {
   double loglik = 0.0;  // log_likelihood of the run's measurements at its gate
   double measurement_interval_s = 1.0;
   bool consistent() const;
+  bool gate_drops_fixes() const;  // for any sensor
   const SensorCheck* find(est::SensorName k) const;
 };
 
@@ -59,5 +61,7 @@ ModelCheck check_model(const FilterRun& run, const std::vector<Segment>& epoch_l
 // 2 m RTK outlier (NIS ~10^4) would otherwise outweigh a whole drive's evidence and decide which model
 // "fits" by how tight its S is at that one fix.
 double log_likelihood(const std::vector<SensitivityRecord>& records, double gate_probability);
+// One measurement's term of it (0 where S is not positive definite).
+double log_likelihood_term(const SensitivityRecord& record, double gate_probability);
 
 }  // namespace ldv::diag

@@ -105,7 +105,7 @@ void run_timesync(const TimesyncArgs& t) {
     std::printf("  the filter over the whole file: -2 ln L of the GNSS positions %s by %.1f with it\n",
                 gain >= 0.0 ? "falls" : "rises", std::abs(gain));
   // An antenna l_x ahead of the IMU turns the track's course as stamps l_x / v late would (behind: early).
-  const double lever_along_m = std::abs(offset_s) * e.median_speed_mps;
+  const double lever_along_m = e.equivalent_lever_arm_along_m();
   const double largest_m = est::largest_lever_arm_along_m(in.options);
   if (lever_along_m <= largest_m)
     std::printf(
