@@ -1,5 +1,6 @@
 #pragma once
 // Every setting of the estimator, in SI units, with one place that prints it (engineering units).
+#include <array>
 #include <iosfwd>
 #include <map>
 #include <string>
@@ -117,6 +118,10 @@ struct FilterOptions {
   // the innovations' whiteness (estimator/filter/noise_adaptation.hpp), instead of one factor on the IMU that
   // every NIS excess went to (issue 47).
   bool split_noise_adaptation = true;
+  // The GNSS position variance the receiver states, times this per solution quality (NoiseAdaptation's classes:
+  // fixed, float, other), before any adaptation and the gate: a receiver whose std is found too small, as
+  // `ldv diagnose` finds it (its gnss_noise finding) and writes it (ldv.gnss_variance_scale).
+  std::array<double, 3> gnss_variance_scale = {1.0, 1.0, 1.0};
   // With adapt_imu_noise: run_navigation first measures the noise as installed over a standstill in the data
   // and makes it the floor (installed_imu_noise.hpp). Off where the adaptation itself is the measurement
   // (the IMU-latency decision compares how much noise the filter needs with and without a lag).

@@ -128,6 +128,8 @@ const std::vector<std::string> kLdvKeys = {
     "model", "add", "drop", "cov_period_s", "gate_probability", "kfgins_compatible", "step_confirm_s",
     "adapt_imu_noise", "split_noise_adaptation", "use_gnss_velocity", "zupt", "history_s", "align_speed_mps",
     "align_hypotheses", "gnss_bias_sigma_m", "gnss_bias_tau_s", "time_offset_s", "priors",
+    // the stated GNSS position variance times this, per solution quality [fixed, float, other] (estimator/options.hpp)
+    "gnss_variance_scale",
     // geoldv51's moving bias per term (SI; estimator/README.md "State layout"), instead of imunoise's one
     // Gauss-Markov: B with its time constant, K, R
     "moving_bias_gyro_gm_rad_s", "moving_bias_gyro_gm_time_s", "moving_bias_gyro_rw_rad_s_sqrt_s",
@@ -165,6 +167,7 @@ const LdvNumberKey kLdvNumbers[] = {
     {"gnss_bias_sigma_m", 0.0, 1e4, "m"},
     {"gnss_bias_tau_s", 1e-3, 1e9, "s"},
     {"time_offset_s", -10.0, 10.0, "s"},
+    {"gnss_variance_scale", 1e-4, 1e6, "(a factor on the variance)"},
     {"moving_bias_gyro_gm_rad_s", 0.0, 100.0, "rad/s"},
     {"moving_bias_gyro_gm_time_s", 1e-3, 1e9, "s"},
     {"moving_bias_gyro_rw_rad_s_sqrt_s", 0.0, 100.0, "rad/s/sqrt(s)"},

@@ -685,12 +685,17 @@ NavFilter::RejectRun& NavFilter::reject_run(SensorName sensor) {
 }
 
 void NavFilter::apply_measurement(const Measurement& given) {
-  // The GNSS position variance as adapted (split_noise_adaptation): the gate judges against it too.
-  const bool split = opt_.adapt_imu_noise && opt_.split_noise_adaptation && given.sensor == sensors::kGnssPosition;
+  // The GNSS position variance as configured (gnss_variance_scale) and adapted (split_noise_adaptation): the gate
+  // judges against it too.
+  const bool gnss_position = given.sensor == sensors::kGnssPosition;
+  const bool split = opt_.adapt_imu_noise && opt_.split_noise_adaptation && gnss_position;
+  const int gnss_class = std::clamp(given.gnss_class, 0, NoiseAdaptation::kGnssClasses - 1);
+  const double variance_scale = (gnss_position ? opt_.gnss_variance_scale[gnss_class] : 1.0) *
+                                (split ? c_.noise_adaptation.gnss_scale(gnss_class) : 1.0);
   std::optional<Measurement> rescaled;
-  if (split && c_.noise_adaptation.gnss_scale(given.gnss_class) != 1.0) {
+  if (variance_scale != 1.0) {
     rescaled = given;
-    rescaled->R *= c_.noise_adaptation.gnss_scale(given.gnss_class);
+    rescaled->R *= variance_scale;
   }
   const Measurement& m = rescaled ? *rescaled : given;
   RejectRun& run = reject_run(m.sensor);

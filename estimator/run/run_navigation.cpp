@@ -1,6 +1,7 @@
 #include "estimator/run/run_navigation.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -28,6 +29,23 @@ T ldv_key(const KfGinsConfig& cfg, const char* key, T fallback) {
   } catch (const YAML::Exception&) {
     throw InputError(cfg.config_path, cfg.ldv[key].Mark().line + 1, std::string("key 'ldv.") + key + "': wrong type");
   }
+}
+
+// ldv.gnss_variance_scale: one factor for every solution quality, or [fixed, float, other] (the numbers' range is
+// checked at load, kfgins_config.cpp).
+std::array<double, 3> gnss_variance_scale_from(const KfGinsConfig& cfg, std::array<double, 3> fallback) {
+  if (!has_ldv_key(cfg, "gnss_variance_scale")) return fallback;
+  const YAML::Node node = cfg.ldv["gnss_variance_scale"];
+  if (!node.IsSequence()) {
+    const double factor = ldv_key<double>(cfg, "gnss_variance_scale", 1.0);
+    return {factor, factor, factor};
+  }
+  const auto v = ldv_key<std::vector<double>>(cfg, "gnss_variance_scale", {});
+  if (v.size() != 3)
+    throw InputError(cfg.config_path, node.Mark().line + 1,
+                     "key 'ldv.gnss_variance_scale': expected one factor or three [fixed, float, other], found " +
+                         std::to_string(v.size()));
+  return {v[0], v[1], v[2]};
 }
 
 }  // namespace
@@ -81,6 +99,7 @@ FilterOptions options_from_kfgins(const KfGinsConfig& cfg) {
   // The time_offset effect's prior mean [s] (GNSS tag minus IMU tag), e.g. from `ldv diagnose --write-config`.
   o.time_offset_init_s = ldv_key<double>(cfg, "time_offset_s", o.time_offset_init_s);
   o.effect_priors = effect_priors_from(cfg);
+  o.gnss_variance_scale = gnss_variance_scale_from(cfg, o.gnss_variance_scale);
   o.zupt.enabled = ldv_key<bool>(cfg, "zupt", o.zupt.enabled);
   o.aids.enabled = ldv_key<std::vector<std::string>>(cfg, "aids", o.aids.enabled);
   for (const std::string& aid : o.aids.enabled)

@@ -7,13 +7,16 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <random>
 #include <tuple>
 
 #include "common/geo/earth_model.hpp"
+#include "common/io/input_error.hpp"
 #include "estimator/filter/nav_filter.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "sim/imu_grade.hpp"
@@ -196,7 +199,12 @@ namespace {
 // Issue 47, item 3 and "what it must show": float segments whose real noise is 10x the stated one. Two 60 s
 // stretches of a fixed drive turn float, with white noise of 10x the stated std added: the float class's factor
 // finds it (~100 on the variance), the fixed class's stays at 1 and the IMU's at the configured noise.
-TEST(SplitNoiseAdaptation, GivenFloatSegmentsTenTimesNoisierThanStated_ThenTheirClassFactorFindsIt) {
+// Seconds from the first fix of the float stretches below.
+bool in_noisy_float_segment(double t_from_start_s) {
+  return (t_from_start_s >= 200.0 && t_from_start_s < 260.0) || (t_from_start_s >= 700.0 && t_from_start_s < 760.0);
+}
+
+sim::SimResult drive_with_noisy_float_segments() {
   sim::SimRequest r;
   r.grade = "3dm-gx2-typical";
   r.seed = 42;
@@ -208,13 +216,17 @@ TEST(SplitNoiseAdaptation, GivenFloatSegmentsTenTimesNoisierThanStated_ThenTheir
   std::mt19937 rng(5);
   std::normal_distribution<double> n(0.0, 1.0);
   for (GnssFix& f : s.gnss) {
-    const double t = f.t_s - t0;
-    if (!((t >= 200.0 && t < 260.0) || (t >= 700.0 && t < 760.0))) continue;
+    if (!in_noisy_float_segment(f.t_s - t0)) continue;
     f.quality = GnssQuality::kFloat;
     const Vec3 noise_ned_m(10.0 * f.pos_std_ned_m.x() * n(rng), 10.0 * f.pos_std_ned_m.y() * n(rng),
                            10.0 * f.pos_std_ned_m.z() * n(rng));
     f.pos = earth::offset_ned(f.pos, noise_ned_m);
   }
+  return s;
+}
+
+TEST(SplitNoiseAdaptation, GivenFloatSegmentsTenTimesNoisierThanStated_ThenTheirClassFactorFindsIt) {
+  sim::SimResult s = drive_with_noisy_float_segments();
   FilterOptions o = options_from_kfgins(s.kfgins);
   o.split_noise_adaptation = true;
   NavFilter f(o);
@@ -225,6 +237,71 @@ TEST(SplitNoiseAdaptation, GivenFloatSegmentsTenTimesNoisierThanStated_ThenTheir
   EXPECT_LE(f.gnss_noise_scale(0), 1.3);
   EXPECT_GE(f.imu_noise_scale(), 0.7);
   EXPECT_LE(f.imu_noise_scale(), 1.5);
+}
+
+// The stated variance's factor as a user (or `ldv diagnose --write-config`) configures it, ldv.gnss_variance_scale
+// [fixed, float, other]: on the drive above with the noise not adapted, 100 on the float class brings the float
+// fixes' mean NIS from about 100x its expectation into its band and leaves the fixed fixes before them as they were.
+TEST(GnssVarianceScale, GivenTheFloatClassScaledAsItsNoiseIs_ThenItsNisIsInBandAndTheFixedClassUnchanged) {
+  sim::SimResult s = drive_with_noisy_float_segments();
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("ldv_gnss_scale_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  sim::write_outputs(s, dir.string());
+  const auto mean_nis = [&](const std::string& ldv_lines) {
+    {
+      std::ofstream yaml(dir / "kfgins.yaml", std::ios::app);
+      yaml << ldv_lines;
+    }
+    FilterOptions o = options_from_kfgins(load_kfgins_config((dir / "kfgins.yaml").string()));
+    o.adapt_imu_noise = false;
+    NavFilter f(o);
+    std::array<double, 2> sum{}, n{}, used{};
+    double nis_before_float = 0.0;  // the fixed fixes before the first float stretch: its factor cannot touch them
+    RunCallbacks cb;
+    cb.on_innovation = [&](const InnovationRecord& r) {
+      if (r.sensor != sensors::kGnssPosition) return;
+      const double t_s = r.t_s - s.gnss.front().t_s;
+      const int cls = in_noisy_float_segment(t_s) ? 1 : 0;
+      if (t_s < 200.0) nis_before_float += r.nis;
+      sum[cls] += r.nis;
+      n[cls] += 1.0;
+      used[cls] += r.used();
+    };
+    KfGinsConfig cfg = s.kfgins;
+    cfg.end_time_s = -1;
+    run_navigation(s.imu, s.gnss, cfg, f, cb);
+    return std::array<double, 5>{sum[0] / n[0], sum[1] / n[1], used[0] / n[0], used[1] / n[1], nis_before_float};
+  };
+  const auto stated = mean_nis("");
+  const auto scaled = mean_nis("  gnss_variance_scale: [1, 100, 1]\n");
+  std::printf(
+      "[ info ] mean NIS (share used) fixed / float: as stated %.2f (%.3f) / %.1f (%.3f), float scaled 100x %.2f "
+      "(%.3f) / %.2f (%.3f)\n",
+      stated[0], stated[2], stated[1], stated[3], scaled[0], scaled[2], scaled[1], scaled[3]);
+  EXPECT_GT(stated[1], 30.0);
+  EXPECT_NEAR(scaled[1], 3.0, 1.0);
+  EXPECT_GT(scaled[3], 0.99);
+  EXPECT_LE(scaled[0], stated[0]);
+  EXPECT_EQ(scaled[4], stated[4]);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(GnssVarianceScale, GivenTwoFactors_ThenTheConfigurationIsRefusedNamingTheKey) {
+  sim::SimResult s = drive_with_noisy_float_segments();
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("ldv_gnss_scale_bad_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  sim::write_outputs(s, dir.string());
+  std::ofstream(dir / "kfgins.yaml", std::ios::app) << "  gnss_variance_scale: [1, 2]\n";
+  try {
+    options_from_kfgins(load_kfgins_config((dir / "kfgins.yaml").string()));
+    ADD_FAILURE() << "two factors accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("ldv.gnss_variance_scale"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("kfgins.yaml"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove_all(dir);
 }
 }  // namespace
 }  // namespace ldv::est

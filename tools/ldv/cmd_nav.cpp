@@ -107,13 +107,18 @@ void print_summary(const char* what, long imu_samples, double t0, double t1, lon
         run.gyro, run.accel, measured, f.imu_noise_scale(), peak, ft.downweighted);
     if (f.options().split_noise_adaptation) {
       const est::NoiseAdaptation& na = f.noise_adaptation();
-      for (int c = 0; c < est::NoiseAdaptation::kGnssClasses; ++c)
-        if (na.gnss_fixes(c) > 0)
-          std::fprintf(stderr,
-                       "  GNSS noise: %s solutions' position variance times %.2f +- %.2f the stated (std times %.2f) "
-                       "at the end, estimated over %ld fixes apart from the IMU's\n",
-                       est::NoiseAdaptation::gnss_class_name(c), na.gnss_scale(c), na.gnss_scale_sigma(c),
-                       std::sqrt(na.gnss_scale(c)), na.gnss_fixes(c));
+      for (int c = 0; c < est::NoiseAdaptation::kGnssClasses; ++c) {
+        if (na.gnss_fixes(c) == 0) continue;
+        const double configured = f.options().gnss_variance_scale[c];
+        char on_top[120] = "";
+        if (configured != 1.0)
+          std::snprintf(on_top, sizeof on_top, " on top of the configured %.3g (ldv.gnss_variance_scale)", configured);
+        std::fprintf(stderr,
+                     "  GNSS noise: %s solutions' position variance times %.2f +- %.2f the stated (std times %.2f)%s "
+                     "at the end, estimated over %ld fixes apart from the IMU's\n",
+                     est::NoiseAdaptation::gnss_class_name(c), na.gnss_scale(c), na.gnss_scale_sigma(c),
+                     std::sqrt(na.gnss_scale(c)), on_top, na.gnss_fixes(c));
+      }
       std::fprintf(stderr, "  GNSS position innovations: lag-1 correlation %.2f (white: within +-%.2f)\n",
                    na.lag1_correlation(), 3.0 / std::sqrt(std::max<double>(na.lag1_products(), 1.0)));
     }
