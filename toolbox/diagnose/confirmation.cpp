@@ -61,17 +61,21 @@ std::pair<double, double> log_likelihoods_over_common(const std::vector<Sensitiv
   return {ll_a, ll_b};
 }
 
+void judge_rerun(Confirmation& c, const FilterRun& base, int dim, double long_run_factor, double effective_n) {
+  const auto [base_ll, with_ll] = log_likelihoods_over_common(base.records, c.run.records, c.run.gate_probability);
+  c.loglik_gain = with_ll - base_ll;
+  c.adjusted_gain = c.loglik_gain / std::max(1.0, long_run_factor);
+  c.penalty = 0.5 * dim * std::log(std::max(2.0, effective_n));
+  c.accepted = c.adjusted_gain > c.penalty;
+}
+
 Confirmation confirm(const DiagnoseInputs& in, const est::FilterOptions& model, const FilterRun& base,
                      const CandidateScore& score, double long_run_factor, double effective_n) {
   Confirmation c;
   c.effect = score.name;
   c.options = with_candidate(model, score);
   c.run = run_filter(in, c.options);
-  const auto [base_ll, with_ll] = log_likelihoods_over_common(base.records, c.run.records, c.run.gate_probability);
-  c.loglik_gain = with_ll - base_ll;
-  c.adjusted_gain = c.loglik_gain / std::max(1.0, long_run_factor);
-  c.penalty = 0.5 * score.dim * std::log(std::max(2.0, effective_n));
-  c.accepted = c.adjusted_gain > c.penalty;
+  judge_rerun(c, base, score.dim, long_run_factor, effective_n);
   for (const EffectEstimate& e : c.run.estimates)
     if (e.name == score.name) c.estimate = e;
   return c;

@@ -23,6 +23,10 @@ struct Confirmation {
   EffectEstimate estimate;       // the rerun's final estimate of the added effect
 };
 
+// The rerun `c.run` of `c.options` judged against `base`: the gain over the measurements both used, deflated by the
+// long-run factor, against the BIC penalty of `dim` parameters. Effects and noise factors are judged alike.
+void judge_rerun(Confirmation& c, const FilterRun& base, int dim, double long_run_factor, double effective_n);
+
 // Adds `score.name` to `model` with its prior centred on the screening estimate.
 est::FilterOptions with_candidate(const est::FilterOptions& model, const CandidateScore& score);
 

@@ -13,6 +13,7 @@
 #include "estimator/filter/nav_filter.hpp"
 #include "estimator/run/run_navigation.hpp"
 #include "toolbox/diagnose/filter_run.hpp"
+#include "toolbox/diagnose/noise_candidate.hpp"
 
 namespace ldv::diag {
 namespace {
@@ -94,21 +95,6 @@ void measure_imu_noise(const DiagnoseInputs& in, est::FilterOptions& model, Diag
   d.imu_noise_applied = true;
 }
 
-// The GNSS noise the innovations call for, per solution quality, estimated apart from the IMU's (issue 47): a pass
-// with the split noise adaptation. Reported, not applied.
-void measure_gnss_noise(const DiagnoseInputs& in, const est::FilterOptions& model, Diagnosis& d) {
-  est::FilterOptions o = model;
-  o.adapt_imu_noise = o.split_noise_adaptation = true;
-  try {
-    est::NavFilter filter(o);
-    est::run_navigation(in.imu, in.gnss, in.cfg, filter, est::RunCallbacks{}, nullptr, &in.others);
-    ++d.filter_runs;
-    d.gnss_noise = filter.noise_adaptation();
-  } catch (const std::exception&) {
-    // the diagnosis's own runs report what is wrong with the inputs
-  }
-}
-
 // The noise as installed and the turn-on gyro bias the start took out: estimated by the system, not by the model.
 void add_self_calibration_findings(Diagnosis& d) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -140,10 +126,16 @@ void add_self_calibration_findings(Diagnosis& d) {
       c.estimate_si = Eigen::Map<const Eigen::VectorXd>(factors.data(), static_cast<Eigen::Index>(factors.size()));
       c.sigma_si = Eigen::Map<const Eigen::VectorXd>(sigmas.data(), static_cast<Eigen::Index>(sigmas.size()));
       c.unit = "x the stated position variance (" + classes + ")";
-      c.applied = false;
+      c.applied = d.gnss_noise_added;
+      const bool rerun = std::any_of(d.steps.begin(), d.steps.end(), [](const DiagnosisStep& st) {
+        return std::any_of(st.confirmations.begin(), st.confirmations.end(),
+                           [](const Confirmation& k) { return k.effect == kGnssNoiseCandidate; });
+      });
       c.note =
-          "from the GNSS position innovations, apart from the IMU's noise (fix-to-fix differences); the "
-          "diagnosis judges the configured model";
+          std::string("from the GNSS position innovations, apart from the IMU's noise (fix-to-fix differences); ") +
+          (d.gnss_noise_added ? "its rerun fit the fixes best of the candidates: taken in (ldv.gnss_variance_scale)"
+           : rerun            ? "its rerun did not fit the fixes better than the candidates: not taken in"
+                              : "within 2 sigma of the stated: the configured model kept");
       d.self_calibration.push_back(c);
     }
   }
@@ -208,7 +200,11 @@ Diagnosis diagnose(const DiagnoseInputs& in, const DiagnoseOptions& opt) {
   est::FilterOptions current = opt.model;
   current.adapt_imu_noise = false;  // the model check judges the model as configured
   if (opt.measure_imu_noise) measure_imu_noise(in, current, d);
-  if (opt.measure_imu_noise) measure_gnss_noise(in, current, d);
+  if (opt.measure_imu_noise)
+    if (const auto measured = measure_gnss_noise(in, current)) {
+      d.gnss_noise = *measured;
+      ++d.filter_runs;
+    }
   FilterRun current_run;
   for (int step = 0; step <= opt.max_added; ++step) {
     DiagnosisStep st;
@@ -259,12 +255,30 @@ Diagnosis diagnose(const DiagnoseInputs& in, const DiagnoseOptions& opt) {
           st.confirmations.push_back(confirm(in, current, current_run, cs, lrf, n_eff));
           ++d.filter_runs;
         }
+      // The GNSS noise competes on the same likelihood (effects before noise: it goes first only where it explains
+      // the fixes better than every effect does).
+      if (opt.measure_imu_noise && !d.gnss_noise_added) {
+        const std::optional<est::NoiseAdaptation> measured =
+            step == 0 ? std::optional<est::NoiseAdaptation>(d.gnss_noise) : measure_gnss_noise(in, current);
+        d.filter_runs += step > 0;
+        if (measured)
+          if (auto c = confirm_gnss_noise(in, current, current_run, *measured, lrf, n_eff)) {
+            if (opt.verbose) std::fprintf(stderr, "ldv diagnose: confirming %s\n", kGnssNoiseCandidate);
+            st.confirmations.push_back(std::move(*c));
+            ++d.filter_runs;
+          }
+      }
       for (const Confirmation& c : st.confirmations)
         if (c.accepted && (!best || c.adjusted_gain - c.penalty > best->adjusted_gain - best->penalty)) best = &c;
     }
     if (best) {
       st.added = best->effect;
-      d.add.push_back(best->effect);
+      if (best->effect == kGnssNoiseCandidate) {
+        d.gnss_noise_added = true;
+        d.gnss_noise_added_estimate = best->estimate;
+      } else {
+        d.add.push_back(best->effect);
+      }
       current = best->options;
       d.after = best->run;
     }
@@ -273,9 +287,7 @@ Diagnosis diagnose(const DiagnoseInputs& in, const DiagnoseOptions& opt) {
   }
   d.ranking = final_ranking(d.steps.front());
   d.final_options = current;
-  if (d.add.empty()) {
-    d.after = d.before;
-  }
+  if (!d.changed()) d.after = d.before;
   for (const std::string& name : d.add)
     for (const EffectEstimate& e : d.after.estimates)
       if (e.name == name) d.added_estimates.push_back(e);
@@ -290,7 +302,7 @@ Diagnosis diagnose(const DiagnoseInputs& in, const DiagnoseOptions& opt) {
     d.final_options = current;
   }
   d.labels_after = classify_epochs(d.after.epochs);
-  d.check_after = d.add.empty() ? d.steps.front().check : d.steps.back().check;
+  d.check_after = d.changed() ? d.steps.back().check : d.steps.front().check;
   d.truth_before = truth_error(d.before, d.labels_before, in.truth, opt.truth_skip_s);
   d.truth_after = truth_error(d.after, d.labels_after, in.truth, opt.truth_skip_s);
   add_self_calibration_findings(d);
@@ -309,6 +321,11 @@ std::string config_snippet(const Diagnosis& d) {
     s << "  (1-sigma";
     for (int i = 0; i < e.std_si.size(); ++i) s << " " << e.std_si(i) * e.unit.scale;
     s << ")\n";
+  }
+  if (d.gnss_noise_added) {
+    const auto& k = d.final_options.gnss_variance_scale;
+    s << "  gnss_variance_scale: [" << k[0] << ", " << k[1] << ", " << k[2]
+      << "]   # the stated GNSS position variance times these: fixed, float, other\n";
   }
   for (const EffectEstimate& e : d.added_estimates)
     if (e.name == "lever_arm")

@@ -88,6 +88,10 @@ struct Diagnosis {
   // from the IMU's (FilterOptions::split_noise_adaptation, a pass of its own; not applied: the diagnosis judges the
   // configured model): the adaptation as that pass ended (a class with no fixes was not seen).
   est::NoiseAdaptation gnss_noise;
+  // A step added the GNSS noise (noise_candidate.hpp): the stated variance of the classes it lists times its factors
+  // (final_options.gnss_variance_scale, ldv.gnss_variance_scale in the tuned configuration).
+  bool gnss_noise_added = false;
+  EffectEstimate gnss_noise_added_estimate;
   bool imu_noise_applied = false;
   ModelCheck configured_check;
   // Every self-calibration finding (diagnose() adds the noise and the turn-on bias; `ldv diagnose` adds what the
@@ -95,6 +99,7 @@ struct Diagnosis {
   std::vector<SelfCalibration> self_calibration;
   bool self_calibration_applied() const;
   bool consistent() const;  // the final model passes its check and the last step adds nothing
+  bool changed() const { return !add.empty() || gnss_noise_added; }  // the verdict adds an effect or the noise
 };
 
 // Above this factor on the configured PSD the measured IMU noise replaces the configured one.

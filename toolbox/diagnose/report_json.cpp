@@ -138,10 +138,17 @@ std::string diagnosis_json(const Diagnosis& d) {
     << ",\n  \"consistent\": " << (d.consistent() ? "true" : "false") << ",\n  \"candidates\": [\n    ";
   for (size_t i = 0; i < d.ranking.size(); ++i) o << (i ? ",\n    " : "") << candidate_json(d.ranking[i]);
   o << "\n  ],\n  \"verdict\": {\"add\": " << names(d.add) << ", \"estimates\": "
-    << list(d.added_estimates.size(), [&](size_t i) {
-         const EffectEstimate& e = d.added_estimates[i];
-         return "{\"effect\": " + str(e.name) + ", \"value\": " + vec(e.value_si) + ", \"sigma\": " + vec(e.std_si) + "}";
-       })
+    << list(d.added_estimates.size(),
+            [&](size_t i) {
+              const EffectEstimate& e = d.added_estimates[i];
+              return "{\"effect\": " + str(e.name) + ", \"value\": " + vec(e.value_si) +
+                     ", \"sigma\": " + vec(e.std_si) + "}";
+            })
+    << ", \"gnss_variance_scale\": "
+    << (d.gnss_noise_added
+            ? vec(Eigen::Vector3d(d.final_options.gnss_variance_scale[0], d.final_options.gnss_variance_scale[1],
+                                  d.final_options.gnss_variance_scale[2]))
+            : std::string("null"))
     << ", \"config_snippet\": " << str(config_snippet(d)) << "},\n";
   o << "  \"screening\": {\"epochs\": " << first.epochs << ", \"bandwidth_epochs\": " << first.bandwidth_epochs
     << ", \"nu_eff\": " << num(first.nu_eff) << ", \"threshold_p\": " << num(first.threshold_p)

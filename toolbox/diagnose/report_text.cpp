@@ -114,6 +114,16 @@ std::string why_nothing(const Diagnosis& d) {
   return " (the model is consistent with the data)";
 }
 
+// The GNSS noise a step took in, in words: "rescale the GNSS noise: the stated position variance of fixed solutions
+// times 12.1 (std times 3.48)".
+std::string gnss_noise_words(const EffectEstimate& e) {
+  std::string words = "rescale the GNSS noise: the stated position variance of";
+  for (int i = 0; i < e.value_si.size(); ++i)
+    words += std::string(i ? "," : "") + " " + e.state_names[static_cast<size_t>(i)] + " solutions times " +
+             fmt("%.3g", e.value_si(i)) + " (std times " + fmt("%.3g", std::sqrt(e.value_si(i))) + ")";
+  return words;
+}
+
 // What the system estimated on its own (ldv diagnose's findings beside the model's): value, sigma, applied.
 void print_self_calibration(std::ostream& out, const Diagnosis& d) {
   if (d.self_calibration.empty()) return;
@@ -192,11 +202,12 @@ void print_report(std::ostream& out, const Diagnosis& d) {
     }
   }
   out << "\n3. Verdict: ";
-  if (d.add.empty()) {
+  if (!d.changed()) {
     out << "nothing to add" << why_nothing(d) << "\n";
   } else {
-    out << "add";
+    if (!d.add.empty()) out << "add";
     for (const auto& a : d.add) out << " " << a;
+    if (d.gnss_noise_added) out << (d.add.empty() ? "" : "; ") << gnss_noise_words(d.gnss_noise_added_estimate);
     out << "\n";
     for (const EffectEstimate& e : d.added_estimates)
       out << "  " << e.name << " = [" << values(e.value_si, e.unit.scale) << "] +- [" << values(e.std_si, e.unit.scale)
@@ -221,7 +232,7 @@ void print_report(std::ostream& out, const Diagnosis& d) {
     else if (!t.coverage_note.empty())
       out << "  only part compared: " << t.coverage_note << "\n";
     print_truth(out, "before:", d.truth_before);
-    if (!d.add.empty()) {
+    if (d.changed()) {
       print_truth(out, "after: ", d.truth_after);
       out << "  (after: the tuned model, each added effect started from its estimate and sigma, as --write-config "
              "writes it and ldv nav runs it)\n";

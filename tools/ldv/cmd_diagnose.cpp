@@ -87,6 +87,11 @@ void write_tuned_config(const std::string& config_path, const diag::Diagnosis& d
       root["ldv"]["vehicle_mounting_deg"] = std::vector<double>{rpy.x() * kRadToDeg, rpy.y() * kRadToDeg, rpy.z() * kRadToDeg};
     }
   }
+  // The GNSS noise a step took in: the configured factors (ldv.gnss_variance_scale, if any) times the added ones.
+  if (d.gnss_noise_added) {
+    const auto& k = d.final_options.gnss_variance_scale;
+    root["ldv"]["gnss_variance_scale"] = std::vector<double>{k[0], k[1], k[2]};
+  }
   if (!aids.enabled.empty()) root["ldv"]["aids"] = aids.enabled;
   if (!odometer_path.empty()) root["ldv"]["odopath"] = std::filesystem::absolute(odometer_path).string();
   if (d.imu_noise_applied && root["imunoise"]) {  // the noise as installed replaces the configured floor
