@@ -7,6 +7,7 @@ PACKAGES=(
   libeigen3-dev libgeographiclib-dev libspdlog-dev libyaml-cpp-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev libsystemd-dev
   gnuplot-nox rtklib iproute2 pps-tools systemd chromium strace tzdata
+  gpsbabel  # reads back what `ldv convert` writes (tests/toolbox_convert)
   clang libclang-rt-14-dev  # the libFuzzer run of scripts/test.sh (tests/fuzz/run_libfuzzer.sh)
 )
 missing=()

@@ -47,11 +47,13 @@ CalendarTime utc_from_gps(const GpsTime& t, int leap_seconds) {
 
 std::string gga(const CalendarTime& utc, const Geodetic& pos, const GgaFields& f, std::string_view talker) {
   char tail[160];
+  char hdop[16] = "";
+  if (f.hdop >= 0) std::snprintf(hdop, sizeof hdop, "%.1f", f.hdop);
   char age[16] = "";
   if (f.age_s >= 0) std::snprintf(age, sizeof age, "%.1f", f.age_s);
   char station[8] = "";
   if (f.age_s >= 0) std::snprintf(station, sizeof station, "%04d", f.station_id);
-  std::snprintf(tail, sizeof tail, ",%d,%02d,%.1f,%.4f,M,0.0,M,%s,%s", f.quality, f.num_sats, f.hdop, pos.h_m, age,
+  std::snprintf(tail, sizeof tail, ",%d,%02d,%s,%.4f,M,0.0,M,%s,%s", f.quality, f.num_sats, hdop, pos.h_m, age,
                 station);
   return sentence(std::string(talker) + "GGA," + hhmmss(utc) + "," + ddmm_text(pos.lat_rad, 2, 'N', 'S') + "," +
                   ddmm_text(pos.lon_rad, 3, 'E', 'W') + tail);
@@ -73,12 +75,36 @@ std::string zda(const CalendarTime& utc, std::string_view talker) {
   return sentence(std::string(talker) + b);
 }
 
+namespace {
+double course_deg(double vn, double ve) {
+  const double course = std::atan2(ve, vn) * kRadToDeg;
+  if (course < 0) return course + 360.0 >= 359.995 ? 0.0 : course + 360.0;  // would print as 360.00
+  return course;
+}
+}  // namespace
+
+std::string vtg(double vn, double ve, char mode, std::string_view talker) {
+  const double speed_mps = std::hypot(vn, ve);
+  char b[96];
+  std::snprintf(b, sizeof b, "VTG,%.2f,T,,M,%.3f,N,%.3f,K,%c", course_deg(vn, ve), speed_mps / 0.514444,
+                speed_mps * 3.6, mode);
+  return sentence(std::string(talker) + b);
+}
+
+std::string hdt(double heading_rad, std::string_view talker) {
+  double deg = std::fmod(heading_rad * kRadToDeg, 360.0);
+  if (deg < 0) deg += 360.0;
+  if (deg >= 359.995) deg = 0.0;  // prints as 360.00 otherwise
+  char b[48];
+  std::snprintf(b, sizeof b, "HDT,%.2f,T", deg);
+  return sentence(std::string(talker) + b);
+}
+
 std::string rmc(const CalendarTime& utc, const Geodetic& pos, double vn, double ve, char mode, std::string_view talker) {
   const double speed_kn = std::hypot(vn, ve) / 0.514444;
-  double course = std::atan2(ve, vn) * kRadToDeg;
-  if (course < 0) course += 360.0;
   char b[96];
-  std::snprintf(b, sizeof b, ",%.3f,%.2f,%02d%02d%02d,,,%c", speed_kn, course, utc.day, utc.month, utc.year % 100, mode);
+  std::snprintf(b, sizeof b, ",%.3f,%.2f,%02d%02d%02d,,,%c", speed_kn, course_deg(vn, ve), utc.day, utc.month,
+                utc.year % 100, mode);
   return sentence(std::string(talker) + "RMC," + hhmmss(utc) + ",A," + ddmm_text(pos.lat_rad, 2, 'N', 'S') + "," +
                   ddmm_text(pos.lon_rad, 3, 'E', 'W') + b);
 }
