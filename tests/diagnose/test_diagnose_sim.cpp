@@ -3,8 +3,11 @@
 // excess error; with none, nothing is added. (The many-seed version: test_diagnose_montecarlo.)
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
+#include <random>
 #include <sstream>
 
 #include "common/io/input_error.hpp"
@@ -316,5 +319,52 @@ TEST(DiagnoseSim, GivenAHiddenLeverArmAndTheGnssStdStatedFiveTimesTooSmall_ThenB
   for (int i = 0; i < 3; ++i)
     EXPECT_LT(std::abs(lever.value_si(i) - truth(i)), 3.0 * lever.std_si(i))
         << "axis " << i << ": " << lever.value_si(i) << " +- " << lever.std_si(i);
+}
+}  // namespace ldv::diag
+
+namespace ldv::diag {
+// Issue 47, the IMU noise in the same selection: vibration on the move that the standstill at the start cannot show
+// (white noise of 100x the configured PSD once the drive moves off, as a vehicle's grows with speed). No effect is
+// missing: the verdict raises the IMU noise by the factors the fixes' likelihood finds (gyro 76, accel 48: the
+// adaptation's own windowed MAP factor, held near the standstill's measurement by its prior, read 14x for both) and
+// adds no effect.
+TEST(DiagnoseSim, GivenVibrationOnTheMoveTheStandstillCannotShow_ThenTheVerdictRaisesTheImuNoiseAndAddsNoEffect) {
+  testing::SimCase c;
+  c.grade = "3dm-gx2-typical";
+  c.duration_s = 600.0;
+  c.gnss_rate_hz = 5.0;
+  c.seed = 45;
+  const sim::SimResult r = testing::simulate(c);
+  DiagnoseInputs in = testing::inputs(r);
+  const est::FilterOptions configured = est::options_from_kfgins(r.kfgins);
+  std::mt19937 rng(7);
+  std::normal_distribution<double> n(0.0, 1.0);
+  const double extra = std::sqrt(100.0 - 1.0);  // the PSD 100x: the added std sqrt(99) x the configured density
+  const double moves_off_s = in.gnss.front().t_s + 65.0;  // the `drive` scenario stands for its first 60 s
+  for (ImuIncrement& m : in.imu) {
+    if (m.t_s < moves_off_s) continue;
+    const double sqrt_dt = std::sqrt(m.dt_s);
+    for (int i = 0; i < 3; ++i) {
+      m.dtheta_b_rad(i) += extra * configured.arw_rad_per_sqrt_s(i) * sqrt_dt * n(rng);
+      m.dvel_b_mps(i) += extra * configured.vrw_mps_per_sqrt_s(i) * sqrt_dt * n(rng);
+    }
+  }
+  const Diagnosis d = diagnose(in, testing::options(r, "kfgins21"));
+  std::string order;
+  for (const DiagnosisStep& s : d.steps) order += s.added + " ";
+  if (d.imu_noise_added)
+    std::printf("[ info ] steps added: %s; IMU noise %.1f +- %.1f (gyro), %.1f +- %.1f (accel) x the PSD\n",
+                order.c_str(), d.imu_noise_added_estimate.value_si(0), d.imu_noise_added_estimate.std_si(0),
+                d.imu_noise_added_estimate.value_si(1), d.imu_noise_added_estimate.std_si(1));
+  if (!d.imu_noise_added || !d.add.empty()) print_report(std::cout, d);
+  EXPECT_TRUE(d.add.empty()) << order;
+  ASSERT_TRUE(d.imu_noise_added) << order;
+  // The gyros' 100x within 0.6-1.5x. The accelerometers' share is weakly observable here (their noise moves the 5 Hz
+  // positions by about a millimetre between fixes, the RTK's is a centimetre): within a factor 3.
+  EXPECT_GT(d.imu_noise_added_estimate.value_si(0), 0.6 * 100.0);
+  EXPECT_LT(d.imu_noise_added_estimate.value_si(0), 1.5 * 100.0);
+  EXPECT_GT(d.imu_noise_added_estimate.value_si(1), 100.0 / 3.0);
+  EXPECT_LT(d.imu_noise_added_estimate.value_si(1), 3.0 * 100.0);
+  EXPECT_FALSE(d.gnss_noise_added) << order;
 }
 }  // namespace ldv::diag

@@ -55,7 +55,7 @@ inline Outcome run_trial(const Trial& t, bool with_reference = false) {
     for (const auto& g : ranked.front().group) o.in_first_group |= (g == name);
     o.in_first_group |= o.ranked_first;
   }
-  o.verdict_any = !d.add.empty();
+  o.verdict_any = d.changed();  // an effect or a noise: on a drive whose model is right, either is a false alarm
   for (const auto& a : d.add) o.verdict_has |= (a == name);
   for (const EffectEstimate& e : d.added_estimates)
     if (e.name == name) {

@@ -21,6 +21,7 @@ struct Confirmation {
   est::FilterOptions options;    // the model with the effect added
   FilterRun run;
   EffectEstimate estimate;       // the rerun's final estimate of the added effect
+  int filter_runs = 1;           // the reruns it took (a noise factor's likelihood search takes several)
 };
 
 // The rerun `c.run` of `c.options` judged against `base`: the gain over the measurements both used, deflated by the

@@ -98,7 +98,26 @@ void measure_imu_noise(const DiagnoseInputs& in, est::FilterOptions& model, Diag
 // The noise as installed and the turn-on gyro bias the start took out: estimated by the system, not by the model.
 void add_self_calibration_findings(Diagnosis& d) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  if (d.imu_noise_standstill_s > 0.0) {
+  if (d.imu_noise_added) {
+    // What the model now runs with, on the configured PSD: the standstill's (where applied) times the innovations'.
+    const EffectEstimate& e = d.imu_noise_added_estimate;
+    const Eigen::Vector2d standstill = d.imu_noise_applied
+                                           ? Eigen::Vector2d(d.imu_noise_scale.gyro, d.imu_noise_scale.accel)
+                                           : Eigen::Vector2d::Ones();
+    SelfCalibration c;
+    c.name = "imu_noise";
+    c.estimate_si = e.value_si.cwiseProduct(standstill);
+    c.sigma_si = e.std_si.cwiseProduct(standstill);
+    c.unit = "x the configured PSD (gyro, accel)";
+    c.applied = true;
+    char b[320];
+    std::snprintf(b, sizeof b,
+                  "the GNSS position innovations called for %.3g x (gyro) and %.3g x (accel) the PSD the diagnosis ran "
+                  "with%s; its rerun fit the fixes best of the candidates: taken in",
+                  e.value_si(0), e.value_si(1), d.imu_noise_applied ? " (the standstill's measurement)" : "");
+    c.note = b;
+    d.self_calibration.push_back(c);
+  } else if (d.imu_noise_standstill_s > 0.0) {
     SelfCalibration c;
     c.name = "imu_noise";
     c.estimate_si = Eigen::Vector2d(d.imu_noise_measured.gyro, d.imu_noise_measured.accel);
@@ -200,9 +219,10 @@ Diagnosis diagnose(const DiagnoseInputs& in, const DiagnoseOptions& opt) {
   est::FilterOptions current = opt.model;
   current.adapt_imu_noise = false;  // the model check judges the model as configured
   if (opt.measure_imu_noise) measure_imu_noise(in, current, d);
+  std::optional<MeasuredNoise> first_noise;
   if (opt.measure_imu_noise)
-    if (const auto measured = measure_gnss_noise(in, current)) {
-      d.gnss_noise = *measured;
+    if ((first_noise = measure_noise(in, current))) {
+      d.gnss_noise = first_noise->adaptation;
       ++d.filter_runs;
     }
   FilterRun current_run;
@@ -257,15 +277,18 @@ Diagnosis diagnose(const DiagnoseInputs& in, const DiagnoseOptions& opt) {
         }
       // The GNSS noise competes on the same likelihood (effects before noise: it goes first only where it explains
       // the fixes better than every effect does).
-      if (opt.measure_imu_noise && !d.gnss_noise_added) {
-        const std::optional<est::NoiseAdaptation> measured =
-            step == 0 ? std::optional<est::NoiseAdaptation>(d.gnss_noise) : measure_gnss_noise(in, current);
+      if (opt.measure_imu_noise && !(d.gnss_noise_added && d.imu_noise_added)) {
+        const std::optional<MeasuredNoise> measured = step == 0 ? first_noise : measure_noise(in, current);
         d.filter_runs += step > 0;
-        if (measured)
-          if (auto c = confirm_gnss_noise(in, current, current_run, *measured, lrf, n_eff)) {
-            if (opt.verbose) std::fprintf(stderr, "ldv diagnose: confirming %s\n", kGnssNoiseCandidate);
-            st.confirmations.push_back(std::move(*c));
-            ++d.filter_runs;
+        std::optional<Confirmation> gnss, imu;
+        if (measured && !d.gnss_noise_added)
+          gnss = confirm_gnss_noise(in, current, current_run, measured->adaptation, lrf, n_eff);
+        if (measured && !d.imu_noise_added) imu = confirm_imu_noise(in, current, current_run, *measured, lrf, n_eff);
+        for (std::optional<Confirmation>* c : {&gnss, &imu})
+          if (*c) {
+            if (opt.verbose) std::fprintf(stderr, "ldv diagnose: confirming %s\n", (*c)->effect.c_str());
+            d.filter_runs += (*c)->filter_runs;
+            st.confirmations.push_back(std::move(**c));
           }
       }
       for (const Confirmation& c : st.confirmations)
@@ -276,6 +299,9 @@ Diagnosis diagnose(const DiagnoseInputs& in, const DiagnoseOptions& opt) {
       if (best->effect == kGnssNoiseCandidate) {
         d.gnss_noise_added = true;
         d.gnss_noise_added_estimate = best->estimate;
+      } else if (best->effect == kImuNoiseCandidate) {
+        d.imu_noise_added = true;
+        d.imu_noise_added_estimate = best->estimate;
       } else {
         d.add.push_back(best->effect);
       }
@@ -321,6 +347,11 @@ std::string config_snippet(const Diagnosis& d) {
     s << "  (1-sigma";
     for (int i = 0; i < e.std_si.size(); ++i) s << " " << e.std_si(i) * e.unit.scale;
     s << ")\n";
+  }
+  if (d.imu_noise_added) {
+    const EffectEstimate& e = d.imu_noise_added_estimate;
+    s << "  # imu_noise: imunoise.arw times " << std::sqrt(e.value_si(0)) << ", imunoise.vrw times "
+      << std::sqrt(e.value_si(1)) << " (the PSDs times " << e.value_si(0) << ", " << e.value_si(1) << ")\n";
   }
   if (d.gnss_noise_added) {
     const auto& k = d.final_options.gnss_variance_scale;

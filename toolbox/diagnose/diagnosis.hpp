@@ -92,6 +92,9 @@ struct Diagnosis {
   // (final_options.gnss_variance_scale, ldv.gnss_variance_scale in the tuned configuration).
   bool gnss_noise_added = false;
   EffectEstimate gnss_noise_added_estimate;
+  // A step raised the IMU white noise (noise_candidate.hpp): the PSDs times these [gyro, accel] (final_options).
+  bool imu_noise_added = false;
+  EffectEstimate imu_noise_added_estimate;
   bool imu_noise_applied = false;
   ModelCheck configured_check;
   // Every self-calibration finding (diagnose() adds the noise and the turn-on bias; `ldv diagnose` adds what the
@@ -99,7 +102,7 @@ struct Diagnosis {
   std::vector<SelfCalibration> self_calibration;
   bool self_calibration_applied() const;
   bool consistent() const;  // the final model passes its check and the last step adds nothing
-  bool changed() const { return !add.empty() || gnss_noise_added; }  // the verdict adds an effect or the noise
+  bool changed() const { return !add.empty() || gnss_noise_added || imu_noise_added; }  // an effect or a noise
 };
 
 // Above this factor on the configured PSD the measured IMU noise replaces the configured one.

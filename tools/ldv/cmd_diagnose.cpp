@@ -94,15 +94,20 @@ void write_tuned_config(const std::string& config_path, const diag::Diagnosis& d
   }
   if (!aids.enabled.empty()) root["ldv"]["aids"] = aids.enabled;
   if (!odometer_path.empty()) root["ldv"]["odopath"] = std::filesystem::absolute(odometer_path).string();
-  if (d.imu_noise_applied && root["imunoise"]) {  // the noise as installed replaces the configured floor
+  // The white noise the diagnosis ran with: the noise as installed in place of the configured floor, and what a step
+  // raised on top (PSD factors; the densities written take their square roots).
+  const auto scale_white_noise = [&](double gyro_psd, double accel_psd) {
+    if (!root["imunoise"]) return;
     for (const char* key : {"arw", "vrw"}) {
       if (!root["imunoise"][key] || !root["imunoise"][key].IsSequence()) continue;
       std::vector<double> v = root["imunoise"][key].as<std::vector<double>>();
-      const double psd_scale = std::string(key) == "arw" ? d.imu_noise_scale.gyro : d.imu_noise_scale.accel;
-      for (double& x : v) x *= std::sqrt(psd_scale);
+      for (double& x : v) x *= std::sqrt(std::string(key) == "arw" ? gyro_psd : accel_psd);
       root["imunoise"][key] = v;
     }
-  }
+  };
+  if (d.imu_noise_applied) scale_white_noise(d.imu_noise_scale.gyro, d.imu_noise_scale.accel);
+  if (d.imu_noise_added)
+    scale_white_noise(d.imu_noise_added_estimate.value_si(0), d.imu_noise_added_estimate.value_si(1));
   YAML::Emitter emitter;
   emitter << root;
   std::ostringstream text;
