@@ -142,6 +142,20 @@ TEST(CompareWeeks, SolutionsAreMatchedOnWeekAndSecondsAcrossARollover) {
   }
 }
 
+// Issue 52: a KF-GINS .nav carries seconds of week only (week 0); against a dated truth it used to be refused ("the
+// two solutions share no GPS time: the first spans weeks 0..0"). It is matched by seconds of week, and says so.
+TEST(CompareWeeks, GivenASolutionWithoutAWeekAndADatedTruth_ThenTheyAreMatchedBySecondsOfWeekAndItIsSaid) {
+  auto a = records(2400, 345600.0, 100);
+  for (auto& r : a) r.week = 0;
+  auto b = records(2400, 345600.0, 100);
+  for (auto& r : b) r.pos = earth::offset_ned(r.pos, Vec3(0.5, 0, 0));
+  const ComparisonResult r = compare_solutions(NavSeries::from_records(a), NavSeries::from_records(b), {});
+  EXPECT_EQ(r.epochs, 100);
+  EXPECT_NEAR(r.stats[1].mean, -0.5, 1e-6);
+  EXPECT_TRUE(r.matched_by_seconds_of_week);
+  EXPECT_NE(comparison_json(r, "a", "b").find("\"matched_by_seconds_of_week\":true"), std::string::npos);
+}
+
 }  // namespace ldv::assess
 
 namespace ldv::assess {

@@ -35,7 +35,7 @@ int run(const std::string& cmd) { return std::system(cmd.c_str()); }
 void write_allan_json(const fs::path& p) {
   // Two channels of an `ldv allan --json` file (toolbox/allan/allan_report.cpp): white noise + flat bias.
   std::ofstream f(p);
-  f << "{\"tool\": \"ldv allan\", \"channels\": [";
+  f << "{\"tool\": \"ldv allan\", \"confidence\": 0.6827, \"channels\": [";
   for (int c = 0; c < 2; ++c) {
     const double N = c ? 1e-3 : 5e-5, B = c ? 2e-5 : 2e-6;
     std::string taus, dev, lo, hi;
@@ -98,6 +98,8 @@ TEST(ReportRender, PageWithEveryPlotOpensInChromium) {
   EXPECT_EQ(images, 11);
   for (const char* heading : {"Trajectory", "Errors against truth", "Innovations", "GNSS outages", "Allan deviation", "Diagnosis"})
     EXPECT_NE(html.find(heading), std::string::npos) << heading;
+  // The Allan bars at the confidence the file states (its caption said "95 %" for ldv allan's 68.3 % bars)
+  EXPECT_NE(html.find("bars: 68.3 % intervals"), std::string::npos);
 
   if (run("command -v chromium > /dev/null") != 0) GTEST_SKIP() << "chromium not installed (apt-get install chromium)";
   // A copy of the page with a script that records whether every image decoded; the page itself has none.

@@ -2,9 +2,10 @@
 // terms (quantisation Q, white N, bias instability B or a Gauss-Markov bias, random walk K, ramp R).
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
-#include "toolbox/assess/gnuplot_figure.hpp"
 #include "common/plot/gnuplot.hpp"
+#include "toolbox/assess/gnuplot_figure.hpp"
 #include "toolbox/assess/json_file.hpp"
 #include "toolbox/assess/report_sections.hpp"
 
@@ -32,6 +33,10 @@ double avar_r(const AllanTerms& a, double tau) { return a.R * a.R * tau * tau / 
 void add_allan_section(HtmlPage& page, const std::string& dir, const ReportInputs& in) {
   const YAML::Node j = load_json_object(in.allan_json, {"channels"}, "`ldv allan --json`");
   page.section("Allan deviation with the fitted noise terms");
+  // The bars are the intervals `ldv allan` computed, at the confidence it states (its default: 68.3 %, one sigma).
+  char bars[64] = "bars: intervals";
+  if (const double confidence = json_double(j["confidence"], NAN); std::isfinite(confidence))
+    std::snprintf(bars, sizeof bars, "bars: %.1f %% intervals", 100.0 * confidence);
   int ch = 0;
   for (const auto& c : j["channels"]) {
     const std::string name = c["name"] ? c["name"].as<std::string>() : "channel " + std::to_string(ch);
@@ -85,7 +90,7 @@ void add_allan_section(HtmlPage& page, const std::string& dir, const ReportInput
       }
     }
     if (a.gauss_markov) t.rows.push_back({"B time constant", fixed(a.T_s, 1), "", "s"});
-    page.figure(fig.render(), name + ": overlapping Allan deviation (95 % intervals) and the fitted terms",
+    page.figure(fig.render(), name + ": overlapping Allan deviation (" + bars + ") and the fitted terms",
                 t.rows.empty() ? std::vector<HtmlTable>{} : std::vector<HtmlTable>{t});
   }
 }

@@ -1,10 +1,11 @@
 // Report sections on the solution itself: trajectory map, errors (or differences) with the filter's
 // 3-sigma envelopes, and the paper's Tables 10-11 beside them.
 #include <algorithm>
+#include <cstdio>
 
 #include "common/geo/earth_model.hpp"
-#include "toolbox/assess/gnuplot_figure.hpp"
 #include "common/plot/gnuplot.hpp"
+#include "toolbox/assess/gnuplot_figure.hpp"
 #include "toolbox/assess/nav_difference.hpp"
 #include "toolbox/assess/nav_side_files.hpp"
 #include "toolbox/assess/report_sections.hpp"
@@ -24,7 +25,8 @@ void local_en(const NavSeries& s, const Geodetic& origin, size_t max_points, std
 
 HtmlTable comparison_table(const ComparisonResult& r, const std::string& title) {
   HtmlTable t;
-  t.caption = title + " (" + std::to_string(r.epochs) + " epochs)";
+  t.caption = title + " (" + std::to_string(r.epochs) + " epochs" +
+              (r.matched_by_seconds_of_week ? "; " + r.matching_note() : std::string()) + ")";
   t.header = {"component", "unit", "mean", "std", "RMS", "max |d|"};
   for (int i = 0; i < kComponents; ++i) {
     const int dec = i < 6 ? 3 : 4;
@@ -111,7 +113,13 @@ void add_error_section(HtmlPage& page, const std::string& dir, const NavSeries& 
                            {"error_attitude", "Attitude", "deg", {6, 7, 8}, {6, 7, 8}}};
   const char* axis_names[3][3] = {{"north", "east", "down"}, {"north", "east", "down"}, {"roll", "pitch", "yaw"}};
   std::vector<HtmlTable> tables;
-  if (ref) tables.push_back(comparison_table(compare_solutions(nav, *ref, {in.settle_s, 1.5}), "Solution minus " + in.reference_label));
+  if (ref) {
+    const ComparisonResult r = compare_solutions(nav, *ref, {in.settle_s, 1.5});
+    if (r.matched_by_seconds_of_week)  // said in the terminal too: a user may have meant another week
+      std::fprintf(stderr, "ldv report: the solution and %s %s\n", in.reference_label.c_str(),
+                   r.matching_note().c_str());
+    tables.push_back(comparison_table(r, "Solution minus " + in.reference_label));
+  }
   for (int p = 0; p < 3; ++p) {
     const Panel& P = panels[p];
     GnuplotFigure fig(dir, P.stem, 1000, 620);

@@ -23,8 +23,10 @@ ComparisonResult compare_solutions(const NavSeries& a, const NavSeries& b, const
   ComparisonResult r;
   if (a.empty() || b.empty()) throw std::invalid_argument("compare: an empty solution");
   const double t_settled = a.t_begin_s() + o.settle_s;
-  // Matched on GPS time (week and seconds of week) when both know their week: A's t_s in B's time base.
-  const bool weeks_known = a.week() >= 0 && b.week() >= 0;
+  // Matched on GPS time (week and seconds of week) when both know their week: A's t_s in B's time base. Week 0 is
+  // "not known" (GPS week 0 is 1980; KF-GINS files carry seconds of week only): then by seconds of week.
+  const bool weeks_known = a.week() > 0 && b.week() > 0;
+  r.matched_by_seconds_of_week = !weeks_known;
   const double a_to_b_s = weeks_known ? (a.week() - b.week()) * NavSeries::kSecondsPerWeek : 0.0;
   std::array<double, kComponents> sum{}, sum2{};
   for (const NavSample& s : a.samples()) {
@@ -59,7 +61,12 @@ ComparisonResult compare_solutions(const NavSeries& a, const NavSeries& b, const
   return r;
 }
 
+std::string ComparisonResult::matching_note() const {
+  return matched_by_seconds_of_week ? "matched by seconds of week: a solution without a GPS week (week 0)" : "";
+}
+
 void print_comparison(std::FILE* out, const ComparisonResult& r, const std::string& a_name, const std::string& b_name) {
+  if (r.matched_by_seconds_of_week) std::fprintf(out, "%s\n", r.matching_note().c_str());
   std::fprintf(out, "%s minus %s: %ld epochs from %.3f to %.3f s (%ld not covered by the second)\n", a_name.c_str(),
                b_name.c_str(), r.epochs, r.t_first_s, r.t_last_s, r.unmatched);
   std::fprintf(out, "%-10s %-5s %12s %12s %12s %12s\n", "component", "unit", "mean", "std", "RMS", "max |d|");
@@ -74,6 +81,7 @@ std::string comparison_json(const ComparisonResult& r, const std::string& a_name
   JsonObject o;
   o.add("tool", "ldv compare").add("a", a_name).add("b", b_name).add("epochs", r.epochs).add("unmatched", r.unmatched);
   o.add("t_first_s", r.t_first_s).add("t_last_s", r.t_last_s);
+  o.add("matched_by_seconds_of_week", r.matched_by_seconds_of_week);
   JsonObject comps;
   for (int i = 0; i < kComponents; ++i) {
     const ComponentStats& s = r.stats[i];

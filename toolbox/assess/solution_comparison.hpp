@@ -26,6 +26,9 @@ struct ComparisonResult {
   long unmatched = 0;        // A epochs after the settling time that B does not cover
   double t_first_s = 0.0, t_last_s = 0.0;
   std::array<ComponentStats, kComponents> stats{};
+  // One side has no GPS week (a .nav of KF-GINS or of ldv nav without a week: week 0): matched by seconds of week.
+  bool matched_by_seconds_of_week = false;
+  std::string matching_note() const;  // "" or what was matched how, in words
 };
 
 struct ComparisonOptions {
