@@ -55,12 +55,17 @@ void write_allan_json(const fs::path& p) {
   f << "]}\n";
 }
 
-void write_diagnose_json(const fs::path& p) {
-  std::ofstream(p) << R"({"model": "kfgins21", "consistent": false,
- "candidates": [{"effect": "lever_arm", "statistic": 412.5, "p_value": 1e-12, "estimate": [0.5, -0.3, -1.2], "sigma": [0.01, 0.01, 0.02], "group": ["lever_arm"]},
-                {"effect": "time_offset", "statistic": 8.1, "p_value": 0.04, "estimate": [0.002], "sigma": [0.001], "group": ["time_offset"]}],
- "verdict": {"add": ["lever_arm"]},
- "before": {"nis_position": 35.2, "rms_north_m": 0.31}, "after": {"nis_position": 3.1, "rms_north_m": 0.02}})";
+// A real `ldv diagnose --json` (its schema was once made up here, and the page missed the diagnosis's headline): a
+// drive with a hidden lever arm, diagnosed against its truth.
+void write_diagnose_json(const fs::path& dir, const fs::path& json) {
+  ASSERT_EQ(run(kLdv +
+                " sim --quiet --grade hg1700-typical --seed 5 --duration 300 --gnss-rate 5 --lever-arm 0.5,-0.3,-1.2 "
+                "--out " +
+                (dir / "diag_sim").string()),
+            0);
+  ASSERT_EQ(run(kLdv + " diagnose --kfgins-config " + (dir / "diag_sim" / "kfgins.yaml").string() + " --truth " +
+                (dir / "diag_sim" / "truth.nav").string() + " --json " + json.string() + " > /dev/null 2>&1"),
+            0);
 }
 
 }  // namespace
@@ -77,7 +82,7 @@ TEST(ReportRender, PageWithEveryPlotOpensInChromium) {
                 " --lengths 30,60 --converge 60 --recovery 30 --json " + (dir / "outage.json").string() + " > /dev/null"),
             0);
   write_allan_json(dir / "allan.json");
-  write_diagnose_json(dir / "diagnose.json");
+  write_diagnose_json(dir, dir / "diagnose.json");
   const fs::path out = dir / "report";
   ASSERT_EQ(run(kLdv + " report --nav " + (dir / "run.nav").string() + " --truth " + truth + " --outage-json " +
                 (dir / "outage.json").string() + " --allan-json " + (dir / "allan.json").string() + " --diagnose-json " +
@@ -98,6 +103,13 @@ TEST(ReportRender, PageWithEveryPlotOpensInChromium) {
   EXPECT_EQ(images, 11);
   for (const char* heading : {"Trajectory", "Errors against truth", "Innovations", "GNSS outages", "Allan deviation", "Diagnosis"})
     EXPECT_NE(html.find(heading), std::string::npos) << heading;
+  // The diagnosis's headline, the error falling and the steps in units (issue 52: the page read keys ldv diagnose
+  // never wrote, printed raw SI numbers and '{...}', and said 'consistent: true' above a verdict adding effects)
+  EXPECT_NE(html.find("Verdict: add lever_arm"), std::string::npos);
+  EXPECT_NE(html.find("Navigation error against truth, before and after"), std::string::npos);
+  EXPECT_NE(html.find("Step by step"), std::string::npos);
+  EXPECT_EQ(html.find("{...}"), std::string::npos);
+  EXPECT_EQ(html.find("consistent: true"), std::string::npos);
   // The Allan bars at the confidence the file states (its caption said "95 %" for ldv allan's 68.3 % bars)
   EXPECT_NE(html.find("bars: 68.3 % intervals"), std::string::npos);
 
