@@ -2,7 +2,9 @@
 // in their commands' schemas, the page written, every image present and non-empty, and the page opened
 // in headless Chromium: it renders and every image decodes (naturalWidth > 0).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -10,8 +12,6 @@
 #include <regex>
 #include <sstream>
 #include <string>
-
-#include <unistd.h>
 
 #include "sim_drive.hpp"
 #include "toolbox/assess/html_page.hpp"
@@ -223,3 +223,49 @@ TEST(ReportRender, StochasticLoopNamesTheMissingRampAndTheMisfitFalls) {
   EXPECT_LE(r_true, std::stod(m[3].str()));
   if (!HasFailure()) fs::remove_all(dir);  // kept for a look when it failed
 }
+
+namespace ldv::assess {
+namespace {
+std::string output_of(const std::string& cmd) {
+  std::string text;
+  if (FILE* p = ::popen((cmd + " 2>&1").c_str(), "r")) {
+    char buf[4096];
+    while (size_t n = std::fread(buf, 1, sizeof buf, p)) text.append(buf, n);
+    ::pclose(p);
+  }
+  return text;
+}
+size_t count_of(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
+  return n;
+}
+}  // namespace
+
+// Issue 52: one command from a configuration alone. `ldv report --kfgins-config F --truth T --out DIR` runs ldv nav,
+// ldv outage and ldv diagnose into DIR with a progress line, makes the whole page, and on a second run reuses every
+// output that is newer than the configuration and its data; a changed configuration runs them again.
+TEST(ReportRender, GivenAConfigurationAlone_ThenOneCommandMakesThePageAndReusesWhatIsUpToDate) {
+  const fs::path dir = fs::temp_directory_path() / ("ldv_report_one_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  ASSERT_EQ(
+      run(kLdv +
+          " sim --quiet --grade hg1700-typical --seed 5 --duration 300 --gnss-rate 5 --lever-arm 0.5,-0.3,-1.2 --out " +
+          (dir / "sim").string()),
+      0);
+  const std::string cmd = kLdv + " report --kfgins-config " + (dir / "sim" / "kfgins.yaml").string() + " --truth " +
+                          (dir / "sim" / "truth.nav").string() + " --out " + (dir / "page").string();
+  const std::string first = output_of(cmd);
+  EXPECT_NE(first.find("[1/3] navigation (ldv nav) done"), std::string::npos) << first;
+  EXPECT_NE(first.find("[3/3] diagnosis (ldv diagnose) done"), std::string::npos) << first;
+  const std::string html = slurp(dir / "page" / "index.html");
+  for (const char* heading : {"Trajectory", "Errors against truth", "Innovations", "GNSS outages", "Diagnosis"})
+    EXPECT_NE(html.find(heading), std::string::npos) << heading;
+  EXPECT_NE(html.find("Verdict: add lever_arm"), std::string::npos);
+  EXPECT_EQ(count_of(output_of(cmd), "is up to date, reused"), 3u);
+  fs::last_write_time(dir / "sim" / "kfgins.yaml", fs::file_time_type::clock::now() + std::chrono::seconds(5));
+  EXPECT_EQ(count_of(output_of(cmd), "is up to date, reused"), 0u);
+  fs::remove_all(dir);
+}
+
+}  // namespace ldv::assess
