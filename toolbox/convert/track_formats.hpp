@@ -20,8 +20,7 @@ void write_csv(const SolutionTrack& track, std::ostream& out);
 struct NmeaOptions {
   std::string talker = "GN";
 };
-// GGA quality: 6 (dead reckoning) where the INS ran alone; where GNSS aided, from the solution's horizontal 1-sigma
-// as an INS/GNSS receiver reports its blended solution: 4 (RTK fixed) up to 5 cm, 5 (RTK float) up to 50 cm, else 2.
+// The sentences of common/formats/nmea_solution.hpp per point (GGA quality 6 where the INS ran alone).
 void write_nmea(const SolutionTrack& track, std::ostream& out, const NmeaOptions& options);
 
 // "2024-08-27T17:30:01.123Z" (the track's UTC, to the millisecond).
