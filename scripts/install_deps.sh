@@ -8,6 +8,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev libsystemd-dev
   gnuplot-nox rtklib iproute2 pps-tools systemd chromium strace tzdata
   gpsbabel  # reads back what `ldv convert` writes (tests/toolbox_convert)
+  gpsd gpsd-clients  # decodes tspi_pub's NMEA output (tests/integration/test_tspi_pub.cpp)
   clang libclang-rt-14-dev  # the libFuzzer run of scripts/test.sh (tests/fuzz/run_libfuzzer.sh)
 )
 missing=()

@@ -117,4 +117,14 @@ bool SerialPort::write_all(std::span<const std::uint8_t> bytes) {
   return true;
 }
 
+std::size_t SerialPort::write_some(std::span<const std::uint8_t> bytes, double now_s) {
+  if (fd_ < 0 || bytes.empty()) return 0;
+  const ssize_t n = ::write(fd_, bytes.data(), bytes.size());
+  if (n > 0) return static_cast<std::size_t>(n);
+  if (n < 0 && (errno == EAGAIN || errno == EINTR)) return 0;
+  spdlog::warn("{}: {} (reopening)", describe(), n < 0 ? std::strerror(errno) : "nothing written");
+  close_port(now_s);
+  return 0;
+}
+
 }  // namespace ldv::io

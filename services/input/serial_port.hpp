@@ -28,6 +28,9 @@ class SerialPort : public ByteSource {
   std::string describe() const override;
   // Writes a command to the device (e.g. to start a 3DM-GX2's continuous mode). False if closed.
   bool write_all(std::span<const std::uint8_t> bytes);
+  // Writes what the driver takes now without waiting (an output stream whose reader may stall: a service must not
+  // freeze on it): the bytes written, 0 when closed or full; a hang-up closes the port for a later reopen.
+  std::size_t write_some(std::span<const std::uint8_t> bytes, double now_s);
 
  private:
   void close_port(double now_s);

@@ -1,10 +1,12 @@
 // tspi_pub: the remote-facing product. Subscribes NAV on the vehicle bus and publishes TSPI
 // (tspi_v1_t) at a configured rate on a configured multicast group with a TTL for the vehicle network.
 #include <CLI/CLI.hpp>
+#include <memory>
 
 #include "common/config/config_section.hpp"
 #include "common/logging.hpp"
 #include "services/runtime/service_runtime.hpp"
+#include "services/tspi_pub/nmea_output.hpp"
 #include "services/tspi_pub/tspi_from_nav.hpp"
 
 namespace {
@@ -16,6 +18,7 @@ struct TspiOptions {
   int ttl = 1;                     // >= 1 to leave the host onto the vehicle network
   std::string channel = "TSPI";
   bool print = false;              // also print TSPI lines to stdout (1 Hz)
+  ldv::NmeaOutputOptions nmea;     // NMEA 0183 for a downstream device (off unless a serial port or UDP is given)
 };
 
 TspiOptions load_options(const std::string& path) {
@@ -31,6 +34,7 @@ TspiOptions load_options(const std::string& path) {
   o.ttl = static_cast<int>(t.integer("ttl", o.ttl, 0, 255));
   o.channel = t.channel("channel", o.channel);
   o.print = t.flag("print", o.print);
+  o.nmea = ldv::nmea_output_options(y.section("nmea"));
   y.refuse_unknown();
   return o;
 }
@@ -53,6 +57,10 @@ int main(int argc, char** argv) {
     const std::string tspi_url = "udpm://" + o.group + ":" + std::to_string(o.port) + "?ttl=" + std::to_string(o.ttl);
     ldv::Bus tspi_bus(tspi_url);
     ldv::TspiDecimator decimator(o.rate_hz);
+    // NMEA at its own rate on the same GPS-time grid, from the same NAV
+    std::unique_ptr<ldv::NmeaOutput> nmea;
+    ldv::TspiDecimator nmea_decimator(o.nmea.rate_hz);
+    if (o.nmea.enabled()) nmea = std::make_unique<ldv::NmeaOutput>(o.nmea);
     ldv::SequenceTracker nav_seq;
     double next_print_s = 0;
     rt.bus().subscribe<ldv_lcm::nav_state_t>("NAV", [&](const ldv_lcm::nav_state_t& nav, const std::string&) {
@@ -62,6 +70,8 @@ int main(int argc, char** argv) {
         ++rt.counters().malformed;
         return;
       }
+      if (nmea)
+        if (auto t = nmea_decimator.on_nav(nav)) nmea->send(*t, ldv::host_time_s());
       if (auto t = decimator.on_nav(nav)) {
         tspi_bus.publish(o.channel, *t);
         const double nav_t_s = nav.gps_week * 604800.0 + nav.gps_sow_s;  // one scale across weeks
@@ -77,13 +87,21 @@ int main(int argc, char** argv) {
       }
     }, 5000);
     spdlog::info("tspi_pub: NAV from '{}', TSPI on {} channel {} at {} Hz", o.bus_url, tspi_url, o.channel, o.rate_hz);
+    if (nmea)
+      spdlog::info("tspi_pub: NMEA ({}) at {} Hz{}{}", o.nmea.talker, o.nmea.rate_hz,
+                   o.nmea.serial.empty() ? "" : " on serial " + o.nmea.serial,
+                   o.nmea.udp.empty() ? "" : " to UDP " + o.nmea.udp);
     rt.ready();
     while (rt.running()) {
       rt.bus().handle(50);
+      if (nmea) nmea->maintain(ldv::host_time_s());
       rt.tick();
     }
     spdlog::info("tspi_pub: stopping (received {}, dropped {}, malformed {})", rt.counters().received,
                  rt.counters().dropped, rt.counters().malformed);
+    if (nmea)
+      spdlog::info("tspi_pub: NMEA epochs sent {}, dropped {} (a reader that stalled or a device that was gone)",
+                   nmea->epochs_sent(), nmea->epochs_dropped());
   } catch (const std::exception& e) {
     spdlog::error("tspi_pub: {}", e.what());
     return 1;

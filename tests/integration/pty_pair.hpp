@@ -32,6 +32,7 @@ class PtyPair {
   PtyPair& operator=(const PtyPair&) = delete;
 
   const std::string& slave_path() const { return slave_path_; }
+  int master_fd() const { return master_; }  // what the service writes to its serial port is read here
   // Blocks while the pty buffer is full (the reader sets the pace). False on error.
   bool write_all(const std::uint8_t* data, std::size_t n) {
     std::size_t done = 0;
