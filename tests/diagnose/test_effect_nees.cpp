@@ -53,6 +53,9 @@ Nees effect_nees(const NeesCase& c, int n) {
       if (e.name != name) continue;
       for (int i = 0; i < e.value_si.size(); ++i) {
         const double z = (e.value_si(i) - truth[static_cast<size_t>(i)]) / e.std_si(i);
+        if (std::getenv("LDV_NEES_VERBOSE"))
+          std::printf("  seed %d %s[%d]: estimate %.4g truth %.4g sigma %.3g (%.1f sigma)\n", s, name.c_str(), i,
+                      e.value_si(i), truth[static_cast<size_t>(i)], e.std_si(i), z);
         out.sum_z2 += z * z;
         ++out.dof;
         out.worst_z = std::max(out.worst_z, std::abs(z));
@@ -90,15 +93,28 @@ INSTANTIATE_TEST_SUITE_P(RealisticSizes, EffectNees,
                                            NeesCase{"3dm-gx2-typical", "gyro_misalignment=2000,-1500,1800",
                                                     "kfgins21"}));
 
-// Found optimistic (issue 48, left open): on a consumer MEMS, the accelerometer scale (5000 ppm hidden on top of the
-// grade's own, inside the configured 5000 ppm Gauss-Markov prior: NEES per dof 13.9, worst 10.9 sigma), misalignment
-// (2 mrad in a 5 mrad prior: 14, 6.7 sigma) and g-sensitivity (600 deg/h/g in a 1000 prior: 50, 18 sigma), over 4
-// seeds. Disabled until the cause is found; run with --gtest_also_run_disabled_tests.
-INSTANTIATE_TEST_SUITE_P(DISABLED_KnownOptimistic, EffectNees,
-                         ::testing::Values(NeesCase{"3dm-gx2-typical", "accel_scale=5000,-3000,4000", "ins15"},
+// A consumer MEMS's in-run bias drifts as a random walk and a ramp besides its Gauss-Markov part (the simulator's
+// 3dm-gx2-typical, as geoldv51 models it). kfgins21 and ins15 carry the Gauss-Markov part only: the drift they lack
+// goes into an added effect that can absorb it, and that effect's sigma is then optimistic (accel scale 13.9 per dof,
+// worst 10.9 sigma; accel misalignment 14, 6.7 sigma; g-sensitivity 50, 18 sigma: its z component and the z gyro
+// bias are told apart only by the bias's dynamics). With geoldv51 each is consistent: the effect's sigma is the
+// error's once the model holds what the sensor does.
+INSTANTIATE_TEST_SUITE_P(MemsWithItsBiasDrift, EffectNees,
+                         ::testing::Values(NeesCase{"3dm-gx2-typical", "accel_scale=5000,-3000,4000", "geoldv51"},
                                            NeesCase{"3dm-gx2-typical", "accel_misalignment=2000,-1500,1800",
-                                                    "kfgins21"},
-                                           NeesCase{"3dm-gx2-typical", "g_sensitivity=600,-400,300", "kfgins21"}));
+                                                    "geoldv51"},
+                                           NeesCase{"3dm-gx2-typical", "g_sensitivity=600,-400,300", "geoldv51"}));
+
+// The counterpart (the NEES test can fail, and does where the model misses the physics): the same g-sensitivity
+// under kfgins21, whose bias lacks the drift, is beyond the band.
+TEST(EffectNeesOfAModelMissingTheBiasDrift, GivenMemsGSensitivityUnderKfgins21_ThenItsSigmaIsOptimistic) {
+  const Nees nees = effect_nees(NeesCase{"3dm-gx2-typical", "g_sensitivity=600,-400,300", "kfgins21"}, seeds());
+  ASSERT_GT(nees.dof, 0);
+  const double hi = math::chi_square_quantile(0.995, nees.dof) / nees.dof;
+  std::printf("[ info ] kfgins21: NEES per dof %.1f (band up to %.2f), worst %.1f sigma\n", nees.sum_z2 / nees.dof, hi,
+              nees.worst_z);
+  EXPECT_GT(nees.sum_z2 / nees.dof, hi);
+}
 
 }  // namespace
 }  // namespace ldv::diag
