@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "common/time/utc_text.hpp"
 
@@ -11,6 +12,7 @@ TableTime TableTime::from(config::ConfigSection time) {
   TableTime t;
   t.offset_s = time.number("offset_s", 0.0, config::Range::between(-1e10, 1e10));
   t.column = time.text("column", "");
+  t.date_column = time.text("date_column", "");
   t.row_period_s = time.number("row_period_s", 0.0, config::Range::at_least(0.0).up_to(3600.0));
   const bool counter = time.has("rate_hz");
   if (t.column.empty() == (t.row_period_s <= 0.0))
@@ -29,6 +31,9 @@ TableTime TableTime::from(config::ConfigSection time) {
     t.seconds_per_unit = unit == "ms" ? 1e-3 : unit == "us" ? 1e-6 : unit == "ns" ? 1e-9 : 1.0;
   }
   if (t.column.empty() && counter) time.fail("rate_hz", "a counter's rate needs its column");
+  if (!t.date_column.empty() && (t.format == Format::kNumber || t.column.empty()))
+    time.fail("date_column",
+              "a date column goes with the time-of-day column and its format (column: NAME, format: utc|gpst)");
   return t;
 }
 
@@ -37,7 +42,8 @@ std::string TableTime::describe() const {
   if (column.empty())
     std::snprintf(s, sizeof s, "row x %.6g s + %.10g s", row_period_s, offset_s);
   else if (format != Format::kNumber)
-    std::snprintf(s, sizeof s, "column %s as %s date-times + %.10g s", column.c_str(),
+    std::snprintf(s, sizeof s, "column%s %s%s%s as %s date-times + %.10g s", date_column.empty() ? "" : "s",
+                  date_column.c_str(), date_column.empty() ? "" : " ", column.c_str(),
                   format == Format::kUtcText ? "UTC" : "GPST", offset_s);
   else
     std::snprintf(s, sizeof s, "column %s x %.6g s + %.10g s", column.c_str(), seconds_per_unit, offset_s);
@@ -47,6 +53,7 @@ std::string TableTime::describe() const {
 RowClock::RowClock(const TableTime& time, const TableLayout& layout, const std::string& path, const std::string& key)
     : time_(time), layout_(&layout) {
   if (!time.column.empty()) column_ = table_column(layout, time.column, path, key);
+  if (!time.date_column.empty()) date_column_ = table_column(layout, time.date_column, path, key);
 }
 
 bool RowClock::time_of(long row_index, const std::vector<std::string_view>& fields, double& t_s) const {
@@ -57,7 +64,11 @@ bool RowClock::time_of(long row_index, const std::vector<std::string_view>& fiel
   if (column_ >= static_cast<int>(fields.size())) return false;
   if (time_.format != TableTime::Format::kNumber) {
     DateTimeText d;
-    if (!parse_date_time(fields[column_], d)) return false;
+    if (date_column_ >= static_cast<int>(fields.size())) return false;
+    const bool parsed = date_column_ >= 0
+                            ? parse_date_time(std::string(fields[date_column_]) + " " + std::string(fields[column_]), d)
+                            : parse_date_time(fields[column_], d);
+    if (!parsed) return false;
     // The text's clock (no leap seconds) to the instant in its scale, then UTC to GPS time at that UTC date; in whole
     // seconds (exact in a double since 1970), the fraction added to the seconds of week (1e9 s of total would round
     // a 100 Hz interval by 1e-8 s).

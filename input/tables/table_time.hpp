@@ -4,6 +4,7 @@
 //   {column: NAME, format: utc|gpst, offset_s: X}    a date-time column ("2024-08-27T17:30:01.123Z", "2024/08/27
 //                                                   17:30:01.123"; a stated zone is applied, UTC goes to GPS time
 //                                                   with the leap seconds), in seconds of the first row's GPS week
+//   {date_column: D, column: T, format: utc|gpst}    the same split in two fields (a whitespace table's date and time)
 //   {column: NAME, rate_hz: R, offset_s: X}         a sample counter ticking at R
 //   {row_period_s: P, offset_s: X}                  no usable column: row k (from 0) at X + k P (a logger whose time
 //                                                   column steps by 0.1 s while its rows come at 100 Hz)
@@ -19,6 +20,8 @@ namespace ldv::input {
 
 struct TableTime {
   std::string column;  // empty: from the row index
+  std::string
+      date_column;  // a date-time split in two fields (a whitespace table's "2024/08/27 17:30:01.123"): the date
   enum class Format { kNumber, kUtcText, kGpstText } format = Format::kNumber;
   double seconds_per_unit = 1.0;
   double row_period_s = 0.0;  // > 0 with no column
@@ -40,7 +43,7 @@ class RowClock {
  private:
   TableTime time_;
   const TableLayout* layout_;
-  int column_ = -1;
+  int column_ = -1, date_column_ = -1;
   mutable ContinuousGpsTime weeks_;  // date-time columns: seconds of the first row's week
 };
 

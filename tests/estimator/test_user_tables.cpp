@@ -148,6 +148,48 @@ TEST(UserTables, GivenACarsPublishedCsvDescribedInTheConfiguration_ThenLdvNavMat
   fs::remove_all(dir);
 }
 
+// Issue 49: the date and the time of day in two fields, as a whitespace-separated log prints RTKLIB's
+// "2024/08/27 17:30:01.123" (`time: {date_column: date, column: time, format: gpst}`): the same seconds of week as
+// the one-field stamp above, 235800 s at 17:30:00 GPST on Tuesday 2024-08-27 (2 days x 86400 + 63000 s); a date column
+// without its format is refused naming the key.
+TEST(UserTables, GivenTheDateAndTheTimeInTwoFields_ThenTheRowsAreAtTheirGpsSecondsOfWeek) {
+  const fs::path dir = fs::temp_directory_path() / ("ldv_user_tables_two_fields_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  {
+    std::ofstream log(dir / "log.txt");
+    log << "date time gx gy gz ax ay az\n";
+    for (int k = 0; k < 300; ++k) {
+      char stamp[64];
+      std::snprintf(stamp, sizeof stamp, "2024/08/27 17:30:%02d.%02d", k / 100, k % 100);
+      log << stamp << " 0 0 0 0 0 -1\n";
+    }
+  }
+  const auto config = [&](const std::string& time) {
+    std::ofstream(dir / "c.yaml") << "gnsspath: gnss.txt\n"
+                                  << "imunoise:\n  arw: [1, 1, 1]\n  vrw: [1, 1, 1]\n  gbstd: [10, 10, 10]\n"
+                                  << "  abstd: [100, 100, 100]\n  gsstd: [0, 0, 0]\n  asstd: [0, 0, 0]\n  corrtime: 1\n"
+                                  << "ldv:\n  imu_table:\n    path: log.txt\n"
+                                  << "    time: " << time << "\n"
+                                  << "    gyro: {columns: [gx, gy, gz], unit: deg/s}\n"
+                                  << "    accel: {columns: [ax, ay, az], unit: g}\n";
+    std::ofstream(dir / "gnss.txt") << "235818.0 40.0 -105.0 1600.0 0.02 0.02 0.04\n";
+    return load_kfgins_config((dir / "c.yaml").string());
+  };
+  KfGinsConfig two_fields = config("{date_column: date, column: time, format: gpst}");
+  const input::DriveSources read = input::read_drive_sources(input::SourceArgs{}, two_fields);
+  ASSERT_EQ(read.imu.size(), 299u);
+  EXPECT_NEAR(read.imu.front().t_s, 235800.01, 1e-6);
+  EXPECT_NEAR(read.imu.back().t_s, 235802.99, 1e-6);
+  try {
+    KfGinsConfig no_format = config("{date_column: date, column: time, unit: s}");
+    input::read_drive_sources(input::SourceArgs{}, no_format);
+    ADD_FAILURE() << "a date column without a format was accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("date_column"), std::string::npos) << e.what();
+  }
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace ldv::est
 

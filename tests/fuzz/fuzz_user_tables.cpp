@@ -1,7 +1,8 @@
 // A user's own tables (common/io/delimited_table, input/tables/): whatever the bytes of the data file, an InputError
 // naming it, or IMU increments and GNSS fixes whose times strictly increase and whose values are finite (a std
 // positive, a latitude within +-90 deg). The first byte picks the description: columns by 1-based index or by the
-// names a header would give, rates or increments, a time column or the row index, geodetic or ECEF.
+// names a header would give, rates or increments, a time column (seconds, a date-time, a date and a time of day) or the
+// row index, geodetic or ECEF.
 #include <cmath>
 
 #include "common/config/config_section.hpp"
@@ -20,7 +21,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1) return 0;
   const std::string path = fuzz::input_file(data + 1, size - 1);
   const int mode = data[0];
-  const std::string time = mode & 1 ? "{row_period_s: 0.01, offset_s: 100}" : "{column: 1, unit: ms}";
+  // 32: a date-time column (column 1, UTC); 64: date and time of day in two fields (columns 8 and 9, GPST)
+  const std::string time = mode & 64   ? "{date_column: 8, column: 9, format: gpst}"
+                           : mode & 32 ? "{column: 1, format: utc}"
+                           : mode & 1  ? "{row_period_s: 0.01, offset_s: 100}"
+                                       : "{column: 1, unit: ms}";
   try {
     if (mode & 2) {
       const std::string by = mode & 4 ? "[gx, gy, gz]" : "[2, 3, 4]";

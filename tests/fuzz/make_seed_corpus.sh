@@ -35,13 +35,18 @@ for i in range(40):
     tag += struct.pack("<II", 10 * i + 2, len(csv))
 put("fuzz_rtklib_files", "tagged_csv", b"\x01" + struct.pack("<H", len(tag)) + bytes(tag) + csv)
 # fuzz_user_tables: selector bits (1 row clock, 2 IMU, 4 columns by name, 8 increments / ECEF, 16 interval means /
-# std and quality columns), then the data file
+# std and quality columns, 32 a UTC date-time column, 64 a date and a time of day in two columns), then the data file
 put("fuzz_user_tables", "imu_named_csv", b"\x06t,gx,gy,gz,ax,ay,az\n0,0.1,0.2,0.3,0,0,1\n10,0.1,0.2,0.3,0,0,1\n"
     b"20,0.2,0.2,0.3,0,0.01,1\n")
 put("fuzz_user_tables", "imu_rows_semicolon", b"\x13sep=;\n\"t\";\"a\";\"b\";\"c\";\"d\";\"e\";\"f\"\n"
     b"0;0,1;0,2;0,3;0;0;1\n10;0,1;0,2;0,3;0;0;1\n")
 put("fuzz_user_tables", "gnss_named_ws", b"\x04% t lat lon h\n0 40.1 -105.1 1600\n200 40.1 -105.1 1600\n"
     b"200 40.1 -105.1 1600\n400 40.2 -105.2 1601\n")
+# 32 (0x20): column 1 a UTC date-time; 64 (0x40): columns 8 and 9 a GPST date and time of day
+put("fuzz_user_tables", "imu_utc_date_time", b"\x22stamp,gx,gy,gz,ax,ay,az\n2024-08-27T17:30:00.00Z,0,0,0,0,0,-1\n"
+    b"2024-08-27T17:30:00.01Z,0,0,0,0,0,-1\n2024-08-27 19:30:00.02+02:00,0,0,0,0,0,-1\n")
+put("fuzz_user_tables", "gnss_date_and_time_fields", b"\x40t lat lon h s1 s2 s3 date time\n"
+    b"0 40.1 -105.1 1600 0 0 0 2024/08/27 17:30:00.0\n1 40.1 -105.1 1600 0 0 0 2024/08/27 17:30:00.2\n")
 put("fuzz_user_tables", "gnss_ecef_std_quality", b"\x18t,x,y,z,sx,sy,sz,q\n"
     b"0,-1283000.1,-4720000.2,4079000.3,0.01,0.01,0.02,4\n200,-1283000.2,-4720000.2,4079000.3,0.01,0.01,0.02,5\n")
 # fuzz_gnss_stream: selector (0 auto, 1 nmea, 2 ubx, 3 rtklib), chunk size, bytes
