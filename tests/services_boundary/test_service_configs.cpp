@@ -7,6 +7,8 @@
 #include <fstream>
 
 #include "common/config/config_section.hpp"
+#include "common/formats/kfgins_config.hpp"
+#include "estimator/run/run_navigation.hpp"
 #include "services/gnss_link/gnss_link_options.hpp"
 #include "services/imu_acq/imu_acq_options.hpp"
 
@@ -50,6 +52,11 @@ TEST(ServiceConfigs, GivenAMisspeltKey_ThenTheErrorNamesItsLineAndTheNearestVali
 TEST(ServiceConfigs, GivenTheDeployedConfigs_ThenEveryKeyIsKnown) {
   EXPECT_NO_THROW(imu::load_imu_acq_options(std::string(LDV_SOURCE_DIR) + "/deploy/config/imu_acq.yaml"));
   EXPECT_NO_THROW(gnss::load_gnss_link_options(std::string(LDV_SOURCE_DIR) + "/deploy/config/gnss_link.yaml"));
+  // The vehicle's KF-GINS template fusion.yaml names (installed to /etc/ldvnav/kfgins.yaml): read as fusion reads it
+  const KfGinsConfig vehicle = load_kfgins_config(std::string(LDV_SOURCE_DIR) + "/deploy/config/kfgins.yaml");
+  const est::FilterOptions o = est::options_from_kfgins(vehicle);
+  EXPECT_GT(o.arw_rad_per_sqrt_s.minCoeff(), 0.0);
+  EXPECT_GT(o.vrw_mps_per_sqrt_s.minCoeff(), 0.0);
 }
 
 // Issue 35, item 20: a key given twice (an appended line) silently kept its first value.
