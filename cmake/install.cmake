@@ -54,3 +54,30 @@ foreach(config ${LDV_CONFIGS})
   ldv_install_with_paths(${config} ${LDV_SYSCONF_DIR}/${name} TRUE)
 endforeach()
 ldv_install_with_paths(${CMAKE_SOURCE_DIR}/deploy/rtklib/rtkrcv_instantaneous_ar.conf ${LDV_SYSCONF_DIR}/rtkrcv.conf TRUE)
+
+# A Debian package of the same layout (`cpack -G DEB` in the build folder, or scripts/package_deb.sh): dependencies
+# from what the binaries link (dpkg-shlibdeps), every file under /etc/ldvnav a conffile (dpkg keeps a changed one),
+# maintainer scripts that reload systemd and enable nothing.
+set(CPACK_GENERATOR "DEB")
+set(CPACK_PACKAGE_NAME "ldvnav")
+set(CPACK_PACKAGE_VERSION "${PROJECT_VERSION}")
+set(CPACK_PACKAGE_CONTACT "ldvnav developers <ldvnav@localhost>")
+set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "real-time GPS/INS navigation (TSPI) with its IMU error-model toolbox")
+set(CPACK_PACKAGING_INSTALL_PREFIX "/opt/ldvnav")
+set(CPACK_INSTALL_PREFIX "/opt/ldvnav")  # the prefix the install step sees (CPACK_SET_DESTDIR)
+set(CPACK_SET_DESTDIR ON)  # the absolute destinations (units, /etc/ldvnav) land in the package's root
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
+set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "rtklib, iproute2")
+set(CPACK_DEBIAN_PACKAGE_SECTION "science")
+file(GLOB LDV_CONFFILE_SOURCES CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/deploy/config/*.yaml)
+set(LDV_CONFFILES "")
+foreach(config ${LDV_CONFFILE_SOURCES})
+  get_filename_component(name ${config} NAME)
+  string(APPEND LDV_CONFFILES "${LDV_SYSCONF_DIR}/${name}\n")
+endforeach()
+string(APPEND LDV_CONFFILES "${LDV_SYSCONF_DIR}/rtkrcv.conf\n${LDV_SYSCTL_DIR}/90-ldvnav.conf\n")
+file(WRITE ${CMAKE_BINARY_DIR}/debian/conffiles "${LDV_CONFFILES}")
+set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA
+    ${CMAKE_BINARY_DIR}/debian/conffiles ${CMAKE_SOURCE_DIR}/deploy/debian/postinst ${CMAKE_SOURCE_DIR}/deploy/debian/postrm)
+include(CPack)
