@@ -1,6 +1,5 @@
 #include <cstdio>
 
-#include "common/io/input_error.hpp"
 #include "toolbox/convert/track_formats.hpp"
 
 namespace ldv::convert {
@@ -13,8 +12,7 @@ std::string iso_utc(const CalendarTime& utc) {
 }
 
 void write_gpx(const SolutionTrack& track, std::ostream& out) {
-  if (!track.has_date)
-    throw InputError(track.nav_path, 1, "GPX needs calendar dates: the solution has no GPS week (give --week)");
+  require_dates(track, "GPX");
   out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
          "<gpx version=\"1.1\" creator=\"ldvnav ldv convert\" xmlns=\"http://www.topografix.com/GPX/1/1\" "
          "xmlns:xsi=\"http://www.w3.org/2001/XMLSchema-instance\" "

@@ -1,22 +1,10 @@
 #include <cmath>
 #include <cstdio>
 
-#include "common/io/input_error.hpp"
 #include "toolbox/convert/track_formats.hpp"
 
 namespace ldv::convert {
 namespace {
-
-const char* style_of(Aiding a) {
-  switch (a) {
-    case Aiding::kGnss:
-      return "gnss";
-    case Aiding::kInsOnly:
-      return "ins_only";
-    default:
-      return "unknown";
-  }
-}
 
 const char* label_of(Aiding a) {
   switch (a) {
@@ -38,8 +26,7 @@ void coord(std::ostream& out, const TrackPoint& p) {
 }  // namespace
 
 void write_kml(const SolutionTrack& track, std::ostream& out) {
-  if (!track.has_date)
-    throw InputError(track.nav_path, 1, "KML needs calendar dates: the solution has no GPS week (give --week)");
+  require_dates(track, "KML");
   out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
          "<kml xmlns=\"http://www.opengis.net/kml/2.2\" xmlns:gx=\"http://www.google.com/kml/ext/2.2\">\n"
          "<Document>\n  <name>"
@@ -60,7 +47,7 @@ void write_kml(const SolutionTrack& track, std::ostream& out) {
     const size_t from = begin > 0 ? begin - 1 : begin;
     out << "    <Placemark>\n      <name>" << label_of(pts[begin].aiding) << " " << iso_utc(pts[begin].utc)
         << "</name>\n"
-        << "      <styleUrl>#" << style_of(pts[begin].aiding) << "</styleUrl>\n      <gx:Track>\n"
+        << "      <styleUrl>#" << aiding_name(pts[begin].aiding) << "</styleUrl>\n      <gx:Track>\n"
         << "        <altitudeMode>absolute</altitudeMode>\n";
     for (size_t i = from; i < end; ++i) out << "        <when>" << iso_utc(pts[i].utc) << "</when>\n";
     for (size_t i = from; i < end; ++i) {

@@ -1,12 +1,10 @@
 #include "common/formats/nmea_solution.hpp"
-#include "common/io/input_error.hpp"
 #include "toolbox/convert/track_formats.hpp"
 
 namespace ldv::convert {
 
 void write_nmea(const SolutionTrack& track, std::ostream& out, const NmeaOptions& options) {
-  if (!track.has_date)
-    throw InputError(track.nav_path, 1, "NMEA needs calendar dates: the solution has no GPS week (give --week)");
+  require_dates(track, "NMEA");
   for (const TrackPoint& p : track.points) {
     nmea::SolutionEpoch e;
     e.gps = p.gps;

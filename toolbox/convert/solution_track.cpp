@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <string>
 
 #include "common/formats/kfgins_files.hpp"
 #include "common/io/input_error.hpp"
@@ -48,6 +49,12 @@ const char* aiding_name(Aiding a) {
     default:
       return "unknown";
   }
+}
+
+void require_dates(const SolutionTrack& track, const char* format) {
+  if (!track.has_date)
+    throw InputError(track.nav_path, 1,
+                     std::string(format) + " needs calendar dates: the solution has no GPS week (give --week)");
 }
 
 SolutionTrack load_solution_track(const std::string& nav_path, const TrackOptions& options) {

@@ -40,6 +40,9 @@ struct TrackOptions {
   int week = -1;         // >= 0: the GPS week of a .nav that has none (week 0 rows)
 };
 
+// A format that carries calendar dates (GPX, KML, NMEA) refuses a track without a GPS week: InputError on the .nav.
+void require_dates(const SolutionTrack& track, const char* format);
+
 // Reads NAV and, beside it, NAV's _std.txt and _innovations.txt when present; InputError names the file and line.
 SolutionTrack load_solution_track(const std::string& nav_path, const TrackOptions& options);
 

@@ -275,8 +275,8 @@ Diagnosis diagnose(const DiagnoseInputs& in, const DiagnoseOptions& opt) {
           st.confirmations.push_back(confirm(in, current, current_run, cs, lrf, n_eff));
           ++d.filter_runs;
         }
-      // The GNSS noise competes on the same likelihood (effects before noise: it goes first only where it explains
-      // the fixes better than every effect does).
+      // The GNSS and the IMU noise compete on the same likelihood (effects before noise: a noise goes first only
+      // where it explains the fixes better than every effect does).
       if (opt.measure_imu_noise && !(d.gnss_noise_added && d.imu_noise_added)) {
         const std::optional<MeasuredNoise> measured = step == 0 ? first_noise : measure_noise(in, current);
         d.filter_runs += step > 0;

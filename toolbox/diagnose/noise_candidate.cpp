@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <exception>
 #include <functional>
 #include <string>
@@ -64,7 +65,7 @@ struct LineMaximum {
 };
 LineMaximum maximise_over_ln_factor(double u0, double lo, double hi,
                                     const std::function<Confirmation(double)>& rerun_at) {
-  std::vector<std::pair<double, Confirmation>> tried;
+  std::deque<std::pair<double, Confirmation>> tried;  // a deque: a reference at() returned survives the next run
   const auto at = [&](double u) -> const Confirmation& {
     for (const auto& [v, c] : tried)
       if (std::abs(v - u) < 1e-9) return c;
