@@ -269,3 +269,27 @@ TEST(ReportRender, GivenAConfigurationAlone_ThenOneCommandMakesThePageAndReusesW
 }
 
 }  // namespace ldv::assess
+
+namespace ldv::assess {
+// Issue 52: the innovations plot's range. On the real walk (its tuned configuration) the filter's start-up 3-sigma is
+// metres while the RTK innovations are centimetres: the plotted range follows the 99th percentile of the innovations
+// and the 95th of the envelope (each row's half range under 0.5 m); the caption counts what lies beyond, if anything.
+TEST(ReportRender, GivenTheRealWalk_ThenTheInnovationsAreDrawnOnTheirOwnScale) {
+  const fs::path dir = fs::temp_directory_path() / ("ldv_report_walk_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string config =
+      (fs::path(__FILE__).parent_path().parent_path() / "estimator/data/walk_0827_mems.yaml").string();
+  ASSERT_EQ(run(kLdv + " nav --quiet --kfgins-config " + config + " --out " + (dir / "walk.nav").string()), 0);
+  ASSERT_EQ(
+      run(kLdv + " report --nav " + (dir / "walk.nav").string() + " --out " + (dir / "page").string() + " > /dev/null"),
+      0);
+  const std::string gp = slurp(dir / "page" / "innovations_gnss_position.gp");
+  const std::regex range(R"(set yrange \[-([0-9.]+):)");
+  int rows = 0;
+  for (auto it = std::sregex_iterator(gp.begin(), gp.end(), range); it != std::sregex_iterator(); ++it, ++rows)
+    EXPECT_LT(std::stod((*it)[1].str()), 0.5) << "a row's half range";
+  EXPECT_EQ(rows, 3);
+  fs::remove_all(dir);
+}
+}  // namespace ldv::assess

@@ -1,5 +1,7 @@
 // Report section: every sensor's innovations (GNSS, ZUPT, the aids) against their predicted 3-sigma, and NIS
 // statistics. The innovations file has three columns whatever the sensor; rows a sensor does not have are 0.
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <string>
 #include <vector>
@@ -55,6 +57,14 @@ void add_innovation_section(HtmlPage& page, const std::string& dir, const Report
                         : std::string("-"));
     stats.rows.push_back(row);
   }
+  // A robust half range per row: the 99th percentile of |innovation| and the 95th of the 3-sigma envelope, with room;
+  // one start-up 3-sigma of metres made 2 cm innovations a flat line (issue 52). What lies beyond is counted.
+  const auto quantile = [](std::vector<double> v, double q) {
+    if (v.empty()) return 0.0;
+    const auto at = v.begin() + static_cast<long>(q * static_cast<double>(v.size() - 1));
+    std::nth_element(v.begin(), at, v.end());
+    return *at;
+  };
   bool first = true;
   for (const auto& [kind, list] : by_kind) {
     std::vector<double> t, i0, i1, i2, s0, s1, s2;
@@ -70,8 +80,18 @@ void add_innovation_section(HtmlPage& page, const std::string& dir, const Report
     const std::string d = fig.add_data({t, i0, i1, i2, s0, s1, s2});
     fig.add("set multiplot layout " + std::to_string(rows) + ",1 title " +
             plot::gnuplot_label(kind + " innovations [" + labels.unit + "]") + "\nset lmargin 12\nset rmargin 22");
+    const std::vector<double>* innovations[3] = {&i0, &i1, &i2};
+    const std::vector<double>* sigmas[3] = {&s0, &s1, &s2};
+    long beyond = 0;
     for (int k = 0; k < rows; ++k) {
       const std::string c = std::to_string(2 + k), s = std::to_string(5 + k);
+      std::vector<double> magnitude;
+      for (double v : *innovations[k]) magnitude.push_back(std::abs(v));
+      const double half = 1.3 * std::max(quantile(magnitude, 0.99), quantile(*sigmas[k], 0.95));
+      if (half > 0 && std::isfinite(half)) {
+        fig.add("set yrange [" + std::to_string(-half) + ":" + std::to_string(half) + "]");
+        for (double v : magnitude) beyond += v > half;
+      }
       fig.add("set ylabel " + plot::gnuplot_label(labels.names[k] + " [" + labels.unit + "]"));
       fig.add(k == rows - 1 ? "set xlabel 'time since first measurement [s]'" : "unset xlabel");
       fig.add("plot '" + d + "' using 1:" + c + " with points pt 7 ps 0.3 lc rgb '#1f77b4' title 'innovation', '" + d +
@@ -79,7 +99,10 @@ void add_innovation_section(HtmlPage& page, const std::string& dir, const Report
               ") with lines lw 0.8 lc rgb '#d62728' title '-3 sqrt(S)'");
     }
     fig.add("unset multiplot");
-    page.figure(fig.render(), kind + " innovations and their predicted 3-sigma",
+    page.figure(fig.render(),
+                kind + " innovations and their predicted 3-sigma" +
+                    (beyond > 0 ? " (" + std::to_string(beyond) + " values beyond the plotted range, which covers 99 %)"
+                                : std::string()),
                 first ? std::vector<HtmlTable>{stats} : std::vector<HtmlTable>{});
     first = false;
   }
