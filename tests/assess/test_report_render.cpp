@@ -293,3 +293,27 @@ TEST(ReportRender, GivenTheRealWalk_ThenTheInnovationsAreDrawnOnTheirOwnScale) {
   fs::remove_all(dir);
 }
 }  // namespace ldv::assess
+
+namespace ldv::assess {
+// Issue 52: a 15 s GNSS outage breaks the innovations' 3-sigma line (a NaN row in its data, which gnuplot leaves
+// undrawn) instead of joining both sides across it.
+TEST(ReportRender, GivenAnOutage_ThenTheInnovationEnvelopeIsNotDrawnAcrossIt) {
+  const fs::path dir = fs::temp_directory_path() / ("ldv_report_gap_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  ASSERT_EQ(
+      run(kLdv + " sim --quiet --grade 3dm-gx2-typical --seed 3 --duration 120 --gnss-rate 5 --outages 60:15 --out " +
+          (dir / "sim").string()),
+      0);
+  ASSERT_EQ(run(kLdv + " nav --quiet --kfgins-config " + (dir / "sim" / "kfgins.yaml").string() + " --out " +
+                (dir / "run.nav").string()),
+            0);
+  ASSERT_EQ(
+      run(kLdv + " report --nav " + (dir / "run.nav").string() + " --out " + (dir / "page").string() + " > /dev/null"),
+      0);
+  const std::string data = slurp(dir / "page" / "innovations_gnss_position_0.dat");
+  size_t breaks = 0;
+  for (size_t p = data.find("nan"); p != std::string::npos; p = data.find("nan", p + 1)) ++breaks;
+  EXPECT_EQ(breaks, 7u);  // one row, seven columns: exactly the one outage
+  fs::remove_all(dir);
+}
+}  // namespace ldv::assess

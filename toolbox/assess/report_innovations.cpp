@@ -60,6 +60,7 @@ void add_innovation_section(HtmlPage& page, const std::string& dir, const Report
   // A robust half range per row: the 99th percentile of |innovation| and the 95th of the 3-sigma envelope, with room;
   // one start-up 3-sigma of metres made 2 cm innovations a flat line (issue 52). What lies beyond is counted.
   const auto quantile = [](std::vector<double> v, double q) {
+    std::erase_if(v, [](double x) { return !std::isfinite(x); });  // the NaN rows that break lines at gaps
     if (v.empty()) return 0.0;
     const auto at = v.begin() + static_cast<long>(q * static_cast<double>(v.size() - 1));
     std::nth_element(v.begin(), at, v.end());
@@ -68,8 +69,16 @@ void add_innovation_section(HtmlPage& page, const std::string& dir, const Report
   bool first = true;
   for (const auto& [kind, list] : by_kind) {
     std::vector<double> t, i0, i1, i2, s0, s1, s2;
+    // A gap in the measurements (an outage) breaks the envelope's line: a row of NaN, which gnuplot leaves undrawn.
+    std::vector<double> steps;
+    for (size_t k = 1; k < list.size(); ++k) steps.push_back(list[k]->t_s - list[k - 1]->t_s);
+    const double thinning =
+        std::max(1.0, static_cast<double>(list.size()) / std::max(1.0, static_cast<double>(in.max_plot_points)));
+    const double gap_s = 5.0 * thinning * std::max(quantile(steps, 0.5), 1e-3);
     for (size_t k : thin_indices(list.size(), static_cast<size_t>(in.max_plot_points))) {
       const InnovationRow& r = *list[k];
+      if (!t.empty() && r.t_s - t0 - t.back() > gap_s)
+        for (std::vector<double>* column : {&t, &i0, &i1, &i2, &s0, &s1, &s2}) column->push_back(NAN);
       t.push_back(r.t_s - t0);
       i0.push_back(r.innovation(0)), i1.push_back(r.innovation(1)), i2.push_back(r.innovation(2));
       s0.push_back(3 * r.sqrt_S(0)), s1.push_back(3 * r.sqrt_S(1)), s2.push_back(3 * r.sqrt_S(2));
@@ -90,7 +99,7 @@ void add_innovation_section(HtmlPage& page, const std::string& dir, const Report
       const double half = 1.3 * std::max(quantile(magnitude, 0.99), quantile(*sigmas[k], 0.95));
       if (half > 0 && std::isfinite(half)) {
         fig.add("set yrange [" + std::to_string(-half) + ":" + std::to_string(half) + "]");
-        for (double v : magnitude) beyond += v > half;
+        for (double v : magnitude) beyond += std::isfinite(v) && v > half;
       }
       fig.add("set ylabel " + plot::gnuplot_label(labels.names[k] + " [" + labels.unit + "]"));
       fig.add(k == rows - 1 ? "set xlabel 'time since first measurement [s]'" : "unset xlabel");
