@@ -7,7 +7,6 @@
 
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -16,6 +15,7 @@
 #include <vector>
 
 #include "common/formats/kfgins_config.hpp"
+#include "common/io/run_program.hpp"
 #include "toolbox/assess/report_sections.hpp"
 #include "tools/ldv/cli_checks.hpp"
 #include "tools/ldv/command_registry.hpp"
@@ -29,12 +29,6 @@ struct ReportArgs {
   std::string out, config;
   bool smooth = false, no_outage = false, no_diagnose = false;
 };
-
-std::string shell_quoted(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
 
 // This program, to run its own commands as the user would.
 std::string self_path() {
@@ -65,8 +59,9 @@ std::string last_line(const fs::path& log) {
   return last;
 }
 
-// Runs `ldv ARGS` for one step of the page, its output in DIR/<name>.log; false (said) when it failed.
-bool run_step(int index, int steps, const std::string& what, const std::string& args, const fs::path& output,
+// Runs `ldv ARGS` for one step of the page (no shell: the user's paths stay arguments), its output in DIR/<name>.log;
+// false (said) when it failed.
+bool run_step(int index, int steps, const std::string& what, std::vector<std::string> args, const fs::path& output,
               const std::vector<std::string>& sources, const fs::path& dir, const std::string& name) {
   if (up_to_date(output, sources)) {
     std::fprintf(stderr, "ldv report: [%d/%d] %s: %s is up to date, reused\n", index, steps, what.c_str(),
@@ -76,8 +71,8 @@ bool run_step(int index, int steps, const std::string& what, const std::string& 
   std::fprintf(stderr, "ldv report: [%d/%d] %s ...\n", index, steps, what.c_str());
   const auto t0 = std::chrono::steady_clock::now();
   const fs::path log = dir / (name + ".log");
-  const int rc =
-      std::system((shell_quoted(self_path()) + " " + args + " > " + shell_quoted(log.string()) + " 2>&1").c_str());
+  args.insert(args.begin(), self_path());
+  const int rc = run_program(args, ".", log, log);
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (rc != 0) {
     std::fprintf(stderr, "ldv report: [%d/%d] %s failed after %.1f s, its section is left out: %s (log %s)\n", index,
@@ -93,27 +88,29 @@ void run_from_config(ReportArgs& a) {
   const fs::path dir = a.out;
   fs::create_directories(dir);
   std::vector<std::string> sources = {a.config, cfg.imu_path, cfg.gnss_path, a.in.truth};
-  const std::string config = " --kfgins-config " + shell_quoted(a.config);
-  const std::string truth = a.in.truth.empty() ? "" : " --truth " + shell_quoted(a.in.truth);
+  // a step's arguments with the configuration, and the truth where it takes one and one is given
+  const auto with_inputs = [&](std::vector<std::string> args, bool takes_truth) {
+    args.insert(args.end(), {"--kfgins-config", a.config});
+    if (takes_truth && !a.in.truth.empty()) args.insert(args.end(), {"--truth", a.in.truth});
+    return args;
+  };
   const int steps = 1 + !a.no_outage + !a.no_diagnose;
   int k = 0;
   const fs::path nav = dir / "run.nav";
   if (!run_step(++k, steps, a.smooth ? "smoothing (ldv smooth)" : "navigation (ldv nav)",
-                std::string(a.smooth ? "smooth" : "nav") + config + " --out " + shell_quoted(nav.string()), nav,
-                sources, dir, "nav"))
+                with_inputs({a.smooth ? "smooth" : "nav", "--out", nav.string()}, false), nav, sources, dir, "nav"))
     throw std::runtime_error("report: the navigation failed: nothing to show (log " + (dir / "nav.log").string() + ")");
   a.in.nav = nav.string();
   if (!a.no_outage) {
     const fs::path json = dir / "outage.json";
-    if (run_step(++k, steps, "GNSS-outage study (ldv outage)",
-                 "outage" + config + truth + " --json " + shell_quoted(json.string()), json, sources, dir, "outage"))
+    if (run_step(++k, steps, "GNSS-outage study (ldv outage)", with_inputs({"outage", "--json", json.string()}, true),
+                 json, sources, dir, "outage"))
       a.in.outage_json = json.string();
   }
   if (!a.no_diagnose) {
     const fs::path json = dir / "diagnose.json";
-    if (run_step(++k, steps, "diagnosis (ldv diagnose)",
-                 "diagnose" + config + truth + " --json " + shell_quoted(json.string()), json, sources, dir,
-                 "diagnose"))
+    if (run_step(++k, steps, "diagnosis (ldv diagnose)", with_inputs({"diagnose", "--json", json.string()}, true), json,
+                 sources, dir, "diagnose"))
       a.in.diagnose_json = json.string();
   }
 }
