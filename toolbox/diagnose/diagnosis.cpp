@@ -100,7 +100,7 @@ void add_self_calibration_findings(Diagnosis& d) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   if (d.imu_noise_added) {
     // What the model now runs with, on the configured PSD: the standstill's (where applied) times the innovations'.
-    const EffectEstimate& e = d.imu_noise_added_estimate;
+    const EffectEstimate& e = *d.imu_noise_added;
     const Eigen::Vector2d standstill = d.imu_noise_applied
                                            ? Eigen::Vector2d(d.imu_noise_scale.gyro, d.imu_noise_scale.accel)
                                            : Eigen::Vector2d::Ones();
@@ -145,7 +145,7 @@ void add_self_calibration_findings(Diagnosis& d) {
       c.estimate_si = Eigen::Map<const Eigen::VectorXd>(factors.data(), static_cast<Eigen::Index>(factors.size()));
       c.sigma_si = Eigen::Map<const Eigen::VectorXd>(sigmas.data(), static_cast<Eigen::Index>(sigmas.size()));
       c.unit = "x the stated position variance (" + classes + ")";
-      c.applied = d.gnss_noise_added;
+      c.applied = d.gnss_noise_added.has_value();
       const bool rerun = std::any_of(d.steps.begin(), d.steps.end(), [](const DiagnosisStep& st) {
         return std::any_of(st.confirmations.begin(), st.confirmations.end(),
                            [](const Confirmation& k) { return k.effect == kGnssNoiseCandidate; });
@@ -297,11 +297,9 @@ Diagnosis diagnose(const DiagnoseInputs& in, const DiagnoseOptions& opt) {
     if (best) {
       st.added = best->effect;
       if (best->effect == kGnssNoiseCandidate) {
-        d.gnss_noise_added = true;
-        d.gnss_noise_added_estimate = best->estimate;
+        d.gnss_noise_added = best->estimate;
       } else if (best->effect == kImuNoiseCandidate) {
-        d.imu_noise_added = true;
-        d.imu_noise_added_estimate = best->estimate;
+        d.imu_noise_added = best->estimate;
       } else {
         d.add.push_back(best->effect);
       }
@@ -349,7 +347,7 @@ std::string config_snippet(const Diagnosis& d) {
     s << ")\n";
   }
   if (d.imu_noise_added) {
-    const EffectEstimate& e = d.imu_noise_added_estimate;
+    const EffectEstimate& e = *d.imu_noise_added;
     s << "  # imu_noise: imunoise.arw times " << std::sqrt(e.value_si(0)) << ", imunoise.vrw times "
       << std::sqrt(e.value_si(1)) << " (the PSDs times " << e.value_si(0) << ", " << e.value_si(1) << ")\n";
   }

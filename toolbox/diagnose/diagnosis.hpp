@@ -2,6 +2,7 @@
 // `ldv diagnose` as a library (DESIGN.md section 3): run the model, check it, screen every missing
 // effect, confirm the best by rerunning with it, stepwise; then the verdict and the rerun with it.
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -85,16 +86,14 @@ struct Diagnosis {
   est::ImuNoiseScale imu_noise_measured{NAN, NAN}, imu_noise_measured_sigma{NAN, NAN};
   double imu_noise_standstill_s = 0.0;  // the standstill it was measured over (0: none found)
   // The factors the GNSS position innovations call for on the stated variance, per solution quality, estimated apart
-  // from the IMU's (FilterOptions::split_noise_adaptation, a pass of its own; not applied: the diagnosis judges the
-  // configured model): the adaptation as that pass ended (a class with no fixes was not seen).
+  // from the IMU's (FilterOptions::split_noise_adaptation, a pass of its own on the model under test): the adaptation
+  // as that pass ended (a class with no fixes was not seen). Applied only where a step took it in (below).
   est::NoiseAdaptation gnss_noise;
-  // A step added the GNSS noise (noise_candidate.hpp): the stated variance of the classes it lists times its factors
-  // (final_options.gnss_variance_scale, ldv.gnss_variance_scale in the tuned configuration).
-  bool gnss_noise_added = false;
-  EffectEstimate gnss_noise_added_estimate;
-  // A step raised the IMU white noise (noise_candidate.hpp): the PSDs times these [gyro, accel] (final_options).
-  bool imu_noise_added = false;
-  EffectEstimate imu_noise_added_estimate;
+  // The GNSS noise a step added, if one did (noise_candidate.hpp): the stated variance of the classes it lists times
+  // its factors (final_options.gnss_variance_scale, ldv.gnss_variance_scale in the tuned configuration).
+  std::optional<EffectEstimate> gnss_noise_added;
+  // The IMU white noise a step raised, if one did: the PSDs times these [gyro, accel] (final_options).
+  std::optional<EffectEstimate> imu_noise_added;
   bool imu_noise_applied = false;
   ModelCheck configured_check;
   // Every self-calibration finding (diagnose() adds the noise and the turn-on bias; `ldv diagnose` adds what the

@@ -207,11 +207,11 @@ void print_report(std::ostream& out, const Diagnosis& d) {
   } else {
     if (!d.add.empty()) out << "add";
     for (const auto& a : d.add) out << " " << a;
-    if (d.gnss_noise_added) out << (d.add.empty() ? "" : "; ") << gnss_noise_words(d.gnss_noise_added_estimate);
+    if (d.gnss_noise_added) out << (d.add.empty() ? "" : "; ") << gnss_noise_words(*d.gnss_noise_added);
     if (d.imu_noise_added)
       out << (d.add.empty() && !d.gnss_noise_added ? "" : "; ") << "raise the IMU white noise: the PSDs times "
-          << fmt("%.3g", d.imu_noise_added_estimate.value_si(0)) << " (gyro), "
-          << fmt("%.3g", d.imu_noise_added_estimate.value_si(1)) << " (accel)";
+          << fmt("%.3g", d.imu_noise_added->value_si(0)) << " (gyro), " << fmt("%.3g", d.imu_noise_added->value_si(1))
+          << " (accel)";
     out << "\n";
     for (const EffectEstimate& e : d.added_estimates)
       out << "  " << e.name << " = [" << values(e.value_si, e.unit.scale) << "] +- [" << values(e.std_si, e.unit.scale)

@@ -106,8 +106,7 @@ void write_tuned_config(const std::string& config_path, const diag::Diagnosis& d
     }
   };
   if (d.imu_noise_applied) scale_white_noise(d.imu_noise_scale.gyro, d.imu_noise_scale.accel);
-  if (d.imu_noise_added)
-    scale_white_noise(d.imu_noise_added_estimate.value_si(0), d.imu_noise_added_estimate.value_si(1));
+  if (d.imu_noise_added) scale_white_noise(d.imu_noise_added->value_si(0), d.imu_noise_added->value_si(1));
   YAML::Emitter emitter;
   emitter << root;
   std::ostringstream text;
