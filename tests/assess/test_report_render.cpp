@@ -14,6 +14,7 @@
 #include <string>
 
 #include "sim_drive.hpp"
+#include "tests/estimator/ldv_output.hpp"
 #include "toolbox/assess/html_page.hpp"
 
 using namespace ldv;
@@ -226,15 +227,7 @@ TEST(ReportRender, StochasticLoopNamesTheMissingRampAndTheMisfitFalls) {
 
 namespace ldv::assess {
 namespace {
-std::string output_of(const std::string& cmd) {
-  std::string text;
-  if (FILE* p = ::popen((cmd + " 2>&1").c_str(), "r")) {
-    char buf[4096];
-    while (size_t n = std::fread(buf, 1, sizeof buf, p)) text.append(buf, n);
-    ::pclose(p);
-  }
-  return text;
-}
+std::string output_of(const std::string& cmd) { return est::test::command_output(cmd); }
 size_t count_of(const std::string& text, const std::string& what) {
   size_t n = 0;
   for (size_t p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;

@@ -18,21 +18,14 @@
 #include "common/formats/kfgins_files.hpp"
 #include "common/geo/earth_model.hpp"
 #include "common/time/utc_text.hpp"
+#include "tests/estimator/ldv_output.hpp"
 
 namespace ldv {
 namespace {
 namespace fs = std::filesystem;
 
-std::string run(const std::string& command) {
-  std::string text;
-  if (FILE* p = ::popen((command + " 2>&1").c_str(), "r")) {
-    char buf[4096];
-    while (size_t n = std::fread(buf, 1, sizeof buf, p)) text.append(buf, n);
-    ::pclose(p);
-  }
-  return text;
-}
-std::string ldv(const std::string& args) { return run(std::string(LDV_BIN_DIR) + "/ldv " + args); }
+std::string run(const std::string& command) { return est::test::command_output(command); }
+std::string ldv(const std::string& args) { return est::test::ldv_output(args); }
 
 std::string read_text(const fs::path& p) {
   std::ifstream f(p);
